@@ -10,12 +10,13 @@ JOBS   ?= 2
 setup: $(STAMP)
 
 $(STAMP): pyproject.toml .ci/system-deps
-	./.ci/system-deps
+	PYTHON=$(PYTHON) ./.ci/system-deps
 	$(PYTHON) -c 'import sys; assert sys.version_info >= (3, 11), "partscene needs Python >= 3.11, found " + sys.version'
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[test]'
-	$(PY) -c 'import open3d, pybullet, pinocchio, ompl, trimesh, yourdfpy' 2>/dev/null
+	$(PY) -c 'import open3d, pybullet, pinocchio, ompl, trimesh, yourdfpy' \
+	  || { echo "partscene: the installed packages do not import (see the error above)" >&2; exit 1; }
 	touch $(STAMP)
 
 test: setup
