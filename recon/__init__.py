@@ -1,0 +1,64 @@
+"""Part-level reconstruction: from a labelled scan to an interactive scene URDF (Zhang et al., Sec. II–III).
+
+Pipeline (one module per product)::
+
+    scan.py        read + validate scan.ply / scan.npz + labels.json            -> Scan
+    leveling.py    optional: find the floor and the up direction               -> levelled Scan
+    fitting.py     Eq. 3: best primitive per part (OBB candidates + ICP)       -> PartFit
+    contacts.py    Eq. 1: Align / Dist / Cont on the primitives' planes Π      -> ContactEdge
+    part_tree.py   Eq. 4: maximum spanning arborescence (Edmonds), root = base part
+    refinement.py  Alg. 1: Kabsch rotation of each child onto its parent's planes, top down
+    joints.py      articulated templates (templates.py): joint type, axis, origin, limits
+    scene_graph.py objects: support (floor / another object), proximity, upright pose
+    scene_urdf.py  scene.urdf (yourdfpy);  graph_json.py  graph.json;  preview.py  preview.png
+
+Python API::
+
+    from recon import reconstruct, ReconConfig
+    rec = reconstruct("scan.ply", "labels.json", config=ReconConfig(), level_floor=False, seed=0)
+    rec.write("out/")                 # scene.urdf + graph.json, atomically
+    for obj in rec.objects:           # ObjectReconstruction
+        obj.id, obj.category, obj.name, obj.root_part_id
+        for part in obj.parts:        # PartFit
+            part.part_id, part.label, part.link
+            part.primitive.kind       # PrimitiveKind.BOX / CYLINDER / SPHERE
+            part.primitive.size       # (3,) box extents | cylinder (2r, 2r, length along local z) | sphere (2r,)*3
+            part.primitive.T_world_part   # (4, 4)
+            part.primitive.to_trimesh(), part.primitive.sample_surface(n, rng)
+        obj.joints                    # JointEstimate: name, type, parent_part_id, child_part_id,
+                                      #   axis (3,), origin (3,), lower, upper, contact_score
+        obj.contact_edges_undirected()   # {(a, b): score} every Eq. 1 contact (for mAP)
+        obj.tree_edges()              # ((parent, child), ...) the estimated part tree
+    rec.graph.supports, rec.graph.proximal, rec.warnings
+
+    read_graph_json("graph.json") -> Reconstruction     # the inverse of write (same model)
+
+CLI: ``recon build SCAN --labels LABELS --out DIR [--level-floor] [--seed N] [-v|-q]``.
+"""
+
+from recon.config import ReconConfig
+from recon.errors import ReconError, ReconstructionError, ScanError
+from recon.model import (ContactEdge, JointEstimate, JointType, ObjectReconstruction, PartFit,
+                         Reconstruction, SceneGraph)
+from recon.primitive import Primitive, PrimitiveKind, SurfacePlane
+
+__all__ = [
+    "reconstruct", "read_scan", "read_graph_json", "ReconConfig",
+    "ReconError", "ScanError", "ReconstructionError",
+    "Primitive", "PrimitiveKind", "SurfacePlane",
+    "PartFit", "ContactEdge", "JointEstimate", "JointType", "ObjectReconstruction", "SceneGraph",
+    "Reconstruction", "Scan",
+]
+
+
+def __getattr__(name):  # lazy: importing recon must not import open3d / matplotlib
+    if name == "reconstruct":
+        from recon.pipeline import reconstruct
+        return reconstruct
+    if name in ("read_scan", "Scan"):
+        import recon.scan as _scan
+        return getattr(_scan, name)
+    if name == "read_graph_json":
+        from recon.graph_json import read_graph_json
+        return read_graph_json
+    raise AttributeError(f"module 'recon' has no attribute {name!r}")

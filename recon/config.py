@@ -1,0 +1,107 @@
+"""Every threshold of the reconstruction, named once, with its meaning and unit.
+
+``ReconConfig`` is frozen; build a variant with ``dataclasses.replace(config, theta_d=0.01)``.
+The symbols of the paper (Sections II–III of Zhang et al., part-level scene reconstruction) are kept:
+``theta_a``, ``theta_d``, ``theta_c`` of Eq. 1.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["ReconConfig"]
+
+
+@dataclass(frozen=True)
+class ReconConfig:
+    """Thresholds and constants of every stage. Lengths in metres, angles in radians, mass in kg."""
+
+    # --- input validation (scan.py) ---
+    min_part_points: int = 20
+    """A part with fewer points is skipped with a warning naming it (too few to fit a primitive)."""
+    max_scene_extent: float = 60.0
+    """A scan whose bounding box is larger than this (m) is refused: it is almost surely millimetres."""
+
+    # --- primitive fitting, Eq. 3 (fitting.py) ---
+    min_thickness: float = 0.01
+    """Smallest box/cylinder extent (m): flat or collinear parts are thickened to this."""
+    upright_tolerance: float = 0.15
+    """Use the yaw-only (gravity-aligned) box when its volume is within (1 + this) of the free 3D one."""
+    surface_samples: int = 600
+    """Points sampled on each candidate primitive's surface, h(M) of Eq. 3."""
+    fit_max_points: int = 3000
+    """Part clouds larger than this are subsampled (seeded) for fitting."""
+    icp_max_distance: float = 0.05
+    """ICP correspondence radius (m)."""
+    icp_iterations: int = 30
+    """ICP iteration cap per candidate."""
+    coverage_distance: float = 0.02
+    """A primitive surface sample is 'seen' when a scan point lies within this distance (m)."""
+    min_face_coverage: float = 0.25
+    """A primitive face with a smaller seen fraction counts as unobserved and is left out of the
+    Eq. 3 score (cameras miss faces against walls, floors and each other)."""
+    point_term_weight: float = 1.0
+    """Weight of the scan-to-primitive mean distance added to the Eq. 3 score, so that leaving
+    unobserved faces out can never reward a primitive that does not explain the points."""
+    candidates: tuple[str, ...] = ("box", "cylinder_x", "cylinder_y", "cylinder_z", "sphere")
+    """Candidate templates M^c: box, a cylinder along each box axis, sphere."""
+
+    # --- surface planes and contacts, Eq. 1 (planes.py, contacts.py) ---
+    cylinder_side_faces: int = 8
+    """A cylinder's side is represented by this many tangent rectangles (planes of Π)."""
+    theta_a: float = 0.97
+    """Align: |n_p · n_c| must reach this (cos 14°); 1 is parallel."""
+    theta_d: float = 0.025
+    """Dist: mean distance (m) from the child polygon's vertices to the parent plane, at most this."""
+    theta_c: float = 0.05
+    """Cont: intersection area / child polygon area, at least this."""
+    foreign_parent_penalty: float = 0.5
+    """Template prior: an edge whose parent label is not one the child's template expects (a handle
+    under a body instead of its drawer) has its contact score multiplied by this in the tree."""
+    fallback_edge_weight: float = 1e-6
+    """Weight of the root -> part edge given to parts that touch nothing (they are reported)."""
+
+    # --- joints (joints.py) ---
+    density: float = 600.0
+    """kg/m^3 of every part (particle board); mass = density × primitive volume."""
+    drawer_travel_fraction: float = 0.8
+    """Drawer upper limit = this × the body's depth along the drawer axis."""
+    door_max_angle: float = 2.0
+    """Largest door swing considered (rad, ~115°); the limit stops earlier on a collision."""
+    swing_step: float = 0.035
+    """Angular / travel sampling step (rad or m/rad) of the collision sweep."""
+    sweep_clearance: float = 0.015
+    """The moving part is shrunk by this (m, each side) when swept for collisions."""
+    sweep_min_points: int = 5
+    """A swept pose collides when at least this many foreign scan points fall inside it."""
+    joint_effort: float = 100.0
+    """URDF <limit effort> (N or N·m)."""
+    joint_velocity: float = 1.0
+    """URDF <limit velocity> (m/s or rad/s)."""
+    joint_damping: float = 1.0
+    """URDF <dynamics damping> of movable joints (N·s/m or N·m·s/rad)."""
+    joint_friction: float = 0.1
+    """URDF <dynamics friction> of movable joints (N or N·m)."""
+
+    # --- refinement, Alg. 1 (refinement.py) ---
+    refine_align: float = 0.9
+    """Plane normals with |cos| above this are paired for the Kabsch rotation (cos 26°)."""
+    refine_max_angle: float = 0.35
+    """A refinement rotation larger than this (rad) is rejected as a bad pairing."""
+    collision_clearance: float = 0.003
+    """Movable parts and their children get collision boxes shrunk by this (m, each side), so they
+    do not start in contact with their body or siblings in simulation."""
+
+    # --- scene contact graph (scene_graph.py) ---
+    support_distance: float = 0.05
+    """An object whose bottom is within this (m) of the floor / a top surface is supported by it."""
+    proximal_distance: float = 0.3
+    """Objects whose footprints are closer than this (m) are proximal."""
+    max_upright_tilt: float = 0.2
+    """An object's tilt (rad) below this is corrected to upright by its support refinement."""
+
+    # --- floor levelling (leveling.py) ---
+    floor_ransac_distance: float = 0.02
+    """RANSAC inlier distance (m) of the floor plane."""
+    floor_candidates: int = 4
+    """Largest planes tried as the floor."""

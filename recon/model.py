@@ -1,0 +1,215 @@
+"""The reconstruction's artifacts: frozen dataclasses of float64 arrays, one per stage's product.
+
+    PartFit              one part replaced by its best primitive (Eq. 3) with its planes Π
+    ContactEdge          a directed parent -> child contact that satisfies Eq. 1, with its score
+    JointEstimate        one joint of the part tree (fixed / prismatic / revolute), world frame
+    ObjectReconstruction one object: parts, contact edges, joints (the part tree), pose, support
+    SceneGraph           inter-object supporting and proximal relations
+    Reconstruction       the whole scene; ``.write(out_dir)`` writes scene.urdf + graph.json
+
+Frames: ``T_a_b`` is the (4, 4) pose of b in a; everything here is in the world frame (z up, metres).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+from pathlib import Path
+
+import numpy as np
+
+from recon.config import ReconConfig
+from recon.primitive import Primitive, SurfacePlane
+
+__all__ = ["JointType", "PartFit", "ContactEdge", "JointEstimate", "ObjectReconstruction",
+           "SceneGraph", "Reconstruction"]
+
+
+class JointType(str, Enum):
+    """URDF joint types used by the part tree."""
+
+    FIXED = "fixed"
+    PRISMATIC = "prismatic"
+    REVOLUTE = "revolute"
+
+
+@dataclass(frozen=True, eq=False)
+class PartFit:
+    """One part replaced by its best-aligned primitive (Eq. 3).
+
+    part_id, label : from labels.json; link : URDF link name (scenes.naming.link_name)
+    primitive : the winning primitive (type, size, T_world_part)
+    score : float, metres, the Eq. 3 score of the winner (lower is better)
+    candidate_scores : {candidate name: score} of every candidate tried
+    n_points : number of scan points of the part
+    planes : the surface planes Π of the primitive (world frame)
+    """
+
+    part_id: int
+    label: str
+    link: str
+    primitive: Primitive
+    score: float
+    candidate_scores: dict
+    n_points: int
+    planes: tuple[SurfacePlane, ...]
+
+    def isclose(self, other: "PartFit", atol: float = 1e-6) -> bool:
+        return (self.part_id == other.part_id and self.label == other.label and self.link == other.link
+                and self.primitive.isclose(other.primitive, atol))
+
+
+@dataclass(frozen=True)
+class ContactEdge:
+    """A directed contact parent -> child satisfying Eq. 1 for at least one plane pair.
+
+    score : max over plane pairs of Cont (contact area ratio, 0..1); the Eq. 4 edge weight
+    align : |n_p · n_c| of the best pair; dist : its Dist (m)
+    parent_plane, child_plane : indices into the parts' ``planes`` of the best pair
+    """
+
+    parent_part_id: int
+    child_part_id: int
+    score: float
+    align: float
+    dist: float
+    parent_plane: int
+    child_plane: int
+
+
+@dataclass(frozen=True, eq=False)
+class JointEstimate:
+    """A joint of the part tree, in the world frame at the scanned (closed) state.
+
+    name : URDF joint name (scenes.naming.joint_name of the child)
+    type : JointType
+    parent_part_id : None for the object's root (its parent is the ``world`` link)
+    axis : (3,) unit, world frame; a positive joint value opens (zeros for fixed joints)
+    origin : (3,) a point on the axis, world frame, metres (the hinge line for doors)
+    lower, upper : metres or radians; lower = 0 is the scanned state
+    contact_score : Cont of the tree edge (0 for the root and for parts that touch nothing)
+    handle_part_id : the handle moved by this joint, or None
+    """
+
+    name: str
+    type: JointType
+    parent_part_id: int | None
+    child_part_id: int
+    axis: np.ndarray
+    origin: np.ndarray
+    lower: float = 0.0
+    upper: float = 0.0
+    contact_score: float = 0.0
+    handle_part_id: int | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "type", JointType(self.type))
+        object.__setattr__(self, "axis", np.asarray(self.axis, dtype=np.float64).reshape(3))
+        object.__setattr__(self, "origin", np.asarray(self.origin, dtype=np.float64).reshape(3))
+
+    def isclose(self, other: "JointEstimate", atol: float = 1e-6) -> bool:
+        return (self.name == other.name and self.type is other.type
+                and self.parent_part_id == other.parent_part_id
+                and self.child_part_id == other.child_part_id
+                and np.allclose(self.axis, other.axis, atol=atol)
+                and np.allclose(self.origin, other.origin, atol=atol)
+                and abs(self.lower - other.lower) <= atol and abs(self.upper - other.upper) <= atol)
+
+
+@dataclass(frozen=True, eq=False)
+class ObjectReconstruction:
+    """One object rebuilt from its parts.
+
+    id, category, name : from labels.json; name = scenes.naming.object_name
+    root_part_id : the base part (fixed to the world)
+    parts : PartFit per reconstructed part (refined poses)
+    contacts : every directed edge satisfying Eq. 1 (the graph the tree was chosen from)
+    joints : one per part: the root's fixed joint to the world, then one per tree edge
+    isolated_part_ids : parts that touched nothing; fixed to the root and reported
+    T_world_object : (4, 4) object frame: bottom centre, x = front normal, z up
+    size : (3,) extent in the object frame, metres
+    supported_by : id of the supporting object, or None for the floor
+    """
+
+    id: int
+    category: str
+    name: str
+    root_part_id: int
+    parts: tuple[PartFit, ...]
+    contacts: tuple[ContactEdge, ...]
+    joints: tuple[JointEstimate, ...]
+    isolated_part_ids: tuple[int, ...]
+    T_world_object: np.ndarray
+    size: np.ndarray
+    supported_by: int | None = None
+
+    def part(self, part_id: int) -> PartFit:
+        for p in self.parts:
+            if p.part_id == part_id:
+                return p
+        raise KeyError(f"object {self.name}: no part {part_id}")
+
+    def primitives(self) -> dict[int, Primitive]:
+        """{part_id: fitted primitive} (for metrics: Chamfer / IoU)."""
+        return {p.part_id: p.primitive for p in self.parts}
+
+    def contact_edges_undirected(self) -> dict[tuple[int, int], float]:
+        """{(min id, max id): best score over both directions} of every Eq. 1 contact
+        (the scored edge list for the kinematic-structure mAP)."""
+        out: dict[tuple[int, int], float] = {}
+        for e in self.contacts:
+            key = (min(e.parent_part_id, e.child_part_id), max(e.parent_part_id, e.child_part_id))
+            out[key] = max(out.get(key, 0.0), e.score)
+        return out
+
+    def tree_edges(self) -> tuple[tuple[int, int], ...]:
+        """(parent_part_id, child_part_id) of every non-root joint (the estimated part tree)."""
+        return tuple((j.parent_part_id, j.child_part_id) for j in self.joints
+                     if j.parent_part_id is not None)
+
+
+@dataclass(frozen=True)
+class SceneGraph:
+    """Inter-object relations of the scene contact graph.
+
+    supports : ((child object id, supporter object id or None = floor), ...)
+    proximal : ((object id a, object id b), ...) with a < b
+    """
+
+    supports: tuple[tuple[int, int | None], ...] = ()
+    proximal: tuple[tuple[int, int], ...] = ()
+
+
+@dataclass(frozen=True, eq=False)
+class Reconstruction:
+    """The reconstructed scene (the return value of :func:`recon.reconstruct`).
+
+    objects : ObjectReconstruction per labelled object, in labels.json order
+    graph : the scene-level contact graph
+    warnings : human-readable problems met on the way (each names its object / part)
+    config : the ReconConfig used; seed : the seed used
+    timings : {stage: seconds}
+    """
+
+    objects: tuple[ObjectReconstruction, ...]
+    graph: SceneGraph
+    warnings: tuple[str, ...] = ()
+    config: ReconConfig = field(default_factory=ReconConfig)
+    seed: int = 0
+    timings: dict = field(default_factory=dict)
+
+    def object(self, object_id: int) -> ObjectReconstruction:
+        for o in self.objects:
+            if o.id == object_id:
+                return o
+        raise KeyError(f"no object {object_id} in the reconstruction")
+
+    def joints(self) -> tuple[JointEstimate, ...]:
+        return tuple(j for o in self.objects for j in o.joints)
+
+    def write(self, out_dir: str | Path, *, preview_scan=None) -> dict[str, Path]:
+        """Write ``scene.urdf`` and ``graph.json`` (and ``preview.png`` when ``preview_scan`` — the
+        :class:`recon.scan.Scan` — is given) into ``out_dir``, atomically. Returns {name: path}."""
+        from recon.output import write_reconstruction
+
+        return write_reconstruction(self, out_dir, preview_scan=preview_scan)
