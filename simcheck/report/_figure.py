@@ -1,0 +1,49 @@
+"""Matplotlib (Agg) figures -> PNG bytes -> ``data:`` URIs, so report.html needs no other file."""
+
+from __future__ import annotations
+
+import base64
+import io
+
+import matplotlib
+
+matplotlib.use("Agg")  # headless: never open a window
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+
+__all__ = ["new_figure", "png_from_figure", "data_uri_from_png", "LABEL_COLOURS", "colour_of_label"]
+
+#: Face colour (RGB in [0, 1]) of a part by its semantic label; anything else gets ``_OTHER``.
+LABEL_COLOURS: dict[str, tuple[float, float, float]] = {
+    "body": (0.72, 0.72, 0.70), "drawer": (0.27, 0.51, 0.71), "door": (0.93, 0.55, 0.20),
+    "handle": (0.15, 0.15, 0.15), "top": (0.62, 0.44, 0.27), "leg": (0.45, 0.32, 0.20),
+    "seat": (0.55, 0.71, 0.36), "back": (0.42, 0.60, 0.30), "arm": (0.35, 0.50, 0.25),
+    "frame": (0.60, 0.50, 0.65), "headboard": (0.50, 0.40, 0.60), "mattress": (0.90, 0.88, 0.80),
+    "shelf": (0.80, 0.70, 0.50), "wall": (0.92, 0.92, 0.92),
+}
+_OTHER = (0.80, 0.40, 0.60)
+
+
+def colour_of_label(label: str) -> tuple[float, float, float]:
+    """RGB in [0, 1] for a part label (see :data:`LABEL_COLOURS`)."""
+    return LABEL_COLOURS.get(label, _OTHER)
+
+
+def new_figure(width_in: float, height_in: float) -> Figure:
+    """A figure on the Agg canvas, not registered with pyplot's global state (no leaks)."""
+    fig = Figure(figsize=(width_in, height_in), dpi=100)
+    fig.patch.set_facecolor("white")
+    return fig
+
+
+def png_from_figure(fig: Figure, dpi: int = 90) -> bytes:
+    """PNG bytes of ``fig`` (white background, tight bounding box)."""
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight", facecolor="white")
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def data_uri_from_png(png: bytes) -> str:
+    """``data:image/png;base64,...`` for an ``<img src>``."""
+    return "data:image/png;base64," + base64.b64encode(png).decode("ascii")

@@ -1,0 +1,112 @@
+"""Each object's part tree with its joints, drawn like Fig. 3(c) of the paper (networkx + matplotlib).
+
+Nodes are parts (labelled ``label id``), directed edges go parent -> child and carry the joint type
+and, for an estimate, the contact score that chose the edge.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import networkx as nx
+import numpy as np
+
+from ._errors import ArtifactError
+from ._figure import colour_of_label, new_figure, png_from_figure
+
+__all__ = ["PartTree", "trees_from_scene_json", "png_of_part_trees"]
+
+#: Edge colour per joint type.
+_JOINT_COLOURS = {"fixed": "#555555", "prismatic": "#1f77b4", "revolute": "#d62728"}
+
+
+@dataclass(frozen=True)
+class PartTree:
+    """Part tree of one object: ``name`` (e.g. "cabinet3"), ``category``, ``graph`` a networkx DiGraph
+    (nodes: part ids with attr ``label``; edges parent -> child with ``type``, ``joint``, ``score``)."""
+
+    name: str
+    category: str
+    graph: nx.DiGraph
+
+
+def trees_from_scene_json(doc: Mapping, source: str) -> list[PartTree]:
+    """Part trees of every object in a ``graph.json`` or ``truth.json`` dict.
+
+    Reads ``objects[].parts[]`` (``id`` or ``part_id``, ``label``) and ``objects[].joints[]``
+    (``parent_part_id``, ``child_part_id``, ``type``, ``name``, optional ``contact_score``); a joint whose
+    parent is null (the object's root hanging from the world) adds no edge.
+    """
+    objects = doc.get("objects")
+    if not isinstance(objects, list):
+        raise ArtifactError(f"{source}: expected a list under 'objects'")
+    trees = []
+    for obj in objects:
+        name = str(obj.get("name") or f"{obj.get('category', 'object')}{obj.get('id', '')}")
+        g = nx.DiGraph()
+        for part in obj.get("parts", []):
+            pid = part.get("part_id", part.get("id"))
+            if pid is None:
+                raise ArtifactError(f"{source}: object {name}: a part has no id/part_id")
+            g.add_node(int(pid), label=str(part.get("label", "")))
+        for joint in obj.get("joints", []):
+            parent, child = joint.get("parent_part_id"), joint.get("child_part_id")
+            if parent is None or child is None:
+                continue
+            for pid in (parent, child):
+                if int(pid) not in g:
+                    raise ArtifactError(f"{source}: object {name}: joint {joint.get('name')!r} "
+                                        f"names part {pid}, which the object does not have")
+            score = joint.get("contact_score")
+            g.add_edge(int(parent), int(child), type=str(joint.get("type", "?")),
+                       joint=str(joint.get("name", "")), score=None if score is None else float(score))
+        trees.append(PartTree(name, str(obj.get("category", "")), g))
+    return trees
+
+
+def _layout(g: nx.DiGraph) -> dict[int, np.ndarray]:
+    """Layered top-down layout: roots on top, each child one layer below its parent."""
+    depth: dict[int, int] = {}
+    for root in [n for n in g.nodes if g.in_degree(n) == 0]:
+        for node, d in nx.single_source_shortest_path_length(g, root).items():
+            depth[node] = min(depth.get(node, d), d)
+    for node in g.nodes:
+        depth.setdefault(node, 0)
+    nx.set_node_attributes(g, depth, "layer")
+    pos = nx.multipartite_layout(g, subset_key="layer", align="horizontal")
+    return {n: np.array([p[0], -p[1]]) for n, p in pos.items()}
+
+
+def _draw_tree(ax, tree: PartTree, title: str) -> None:
+    g = tree.graph
+    if g.number_of_nodes() == 0:
+        ax.text(0.5, 0.5, "no parts", ha="center", va="center")
+        ax.set_axis_off()
+        return
+    pos = _layout(g)
+    colours = [colour_of_label(g.nodes[n]["label"]) for n in g.nodes]
+    nx.draw_networkx_nodes(g, pos, ax=ax, node_color=colours, node_size=900, edgecolors="black")
+    for n in g.nodes:  # white text on dark nodes
+        dark = sum(colour_of_label(g.nodes[n]["label"])) < 1.2
+        nx.draw_networkx_labels(g, pos, ax=ax, font_size=7, font_color="white" if dark else "black",
+                                labels={n: f"{g.nodes[n]['label']}\n{n}"})
+    for u, v, data in g.edges(data=True):
+        nx.draw_networkx_edges(g, pos, edgelist=[(u, v)], ax=ax, arrows=True, arrowsize=12,
+                               edge_color=_JOINT_COLOURS.get(data["type"], "#9467bd"), width=2.0,
+                               node_size=900)
+    edge_labels = {(u, v): d["type"] + ("" if d["score"] is None else f"\n{d['score']:.2f}")
+                   for u, v, d in g.edges(data=True)}
+    nx.draw_networkx_edge_labels(g, pos, edge_labels=edge_labels, ax=ax, font_size=7, rotate=False,
+                                 bbox={"boxstyle": "round", "fc": "white", "ec": "none", "alpha": 0.8})
+    ax.set_title(title, fontsize=10)
+    ax.margins(0.2)
+    ax.set_axis_off()
+
+
+def png_of_part_trees(panels: Sequence[tuple[str, PartTree]], panel_in: float = 3.6) -> bytes:
+    """One PNG with a tree per ``(title, tree)`` side by side (e.g. estimate beside truth)."""
+    fig = new_figure(panel_in * len(panels), panel_in)
+    for i, (title, tree) in enumerate(panels):
+        _draw_tree(fig.add_subplot(1, len(panels), i + 1), tree, title)
+    return png_from_figure(fig)

@@ -1,0 +1,183 @@
+"""``render_report(demo_dir, out_html)``: one self-contained report.html from a demo directory.
+
+Each section is drawn from the artifact it shows (see :mod:`._layout`); an artifact that is absent
+gives a visible "not available" note instead of the section, never made-up content. A malformed
+artifact raises :class:`ArtifactError` naming the file.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import tempfile
+import time
+from collections.abc import Mapping
+from pathlib import Path
+
+from ._errors import ArtifactError
+from ._html import badge, esc, img, note, page, section
+from ._layout import DemoLayout
+from ._part_tree_image import png_of_part_trees, trees_from_scene_json
+from ._primitives import solids_from_truth, solids_from_urdf
+from ._scan_image import load_scan, png_of_scan
+from ._scene_image import png_of_scenes
+from ._tables import criteria_table, key_value_table, metrics_table, pipeline_table
+from ._tasks import task_figures
+
+__all__ = ["render_report", "read_json"]
+
+log = logging.getLogger(__name__)
+
+
+def read_json(path: Path) -> dict | None:
+    """The JSON object in ``path``; ``None`` when the file does not exist; raises when malformed."""
+    if not path.exists():
+        return None
+    try:
+        doc = json.loads(path.read_text())
+    except (OSError, ValueError) as exc:
+        raise ArtifactError(f"{path}: not valid JSON ({exc})") from exc
+    if not isinstance(doc, dict):
+        raise ArtifactError(f"{path}: expected a JSON object at the top level, got {type(doc).__name__}")
+    return doc
+
+
+def _missing(what: str, path: Path) -> str:
+    return note(f"Not available: {what} ({path.name} was not found in {path.parent}).")
+
+
+def _scan_section(lay: DemoLayout) -> str:
+    if not lay.scan_npz.exists() or not lay.labels_json.exists():
+        return _missing("the scan", lay.scan_npz if not lay.scan_npz.exists() else lay.labels_json)
+    scan = load_scan(lay.scan_npz, lay.labels_json)
+    return img(png_of_scan(scan), "The virtual scan: each part in its own colour (left) and by label (right).",
+               "scan")
+
+
+def _scene_section(lay: DemoLayout, truth: dict | None) -> str:
+    panels = []
+    if lay.scene_urdf.exists():
+        panels.append(("reconstruction (scene.urdf)", solids_from_urdf(lay.scene_urdf)))
+    if truth is not None:
+        panels.append(("truth (truth.json)", solids_from_truth(truth, str(lay.truth_json))))
+    if not panels:
+        return _missing("the reconstruction and the truth", lay.scene_urdf)
+    body = img(png_of_scenes(panels), "Primitive parts of the reconstruction beside the ground truth, "
+               "coloured by part label, in the state the scan saw.", "scene")
+    if not lay.scene_urdf.exists():
+        body = _missing("the reconstruction", lay.scene_urdf) + body
+    return body
+
+
+def _tree_section(lay: DemoLayout, graph: dict | None, truth: dict | None) -> str:
+    if graph is None and truth is None:
+        return _missing("the part trees", lay.graph_json)
+    est = {t.name: t for t in trees_from_scene_json(graph, str(lay.graph_json))} if graph else {}
+    tru = {t.name: t for t in trees_from_scene_json(truth, str(lay.truth_json))} if truth else {}
+    intro = ("Each object's parts (nodes, coloured by label) and joints (edges parent &rarr; child, "
+             "labelled by joint type and, for the estimate, the contact score that chose the edge: the "
+             "maximum spanning arborescence of the paper's Eq. 4 / Fig. 3).")
+    figs = []
+    for name in list(est) + [n for n in tru if n not in est]:
+        panels = [(f"{name}: estimate", est[name])] if name in est else []
+        if name in tru:
+            panels.append((f"{name}: truth", tru[name]))
+        figs.append(img(png_of_part_trees(panels), f"{name}: part tree"
+                        + (" (estimate, truth)" if len(panels) == 2 else ""), f"tree.{name}"))
+    body = f"<p>{intro}</p>" + (_missing("the estimated part trees", lay.graph_json) if graph is None else "")
+    return body + '<div class="grid">' + "".join(figs) + "</div>"
+
+
+def _task_key(task: Mapping, index: int) -> str:
+    return str(task.get("joint") or task.get("name") or f"task{index}")
+
+
+def _tasks_section(lay: DemoLayout, cert: dict | None) -> str:
+    if cert is None:
+        return _missing("the certificate", lay.certificate_json)
+    tasks = cert.get("tasks")
+    if not isinstance(tasks, list):
+        raise ArtifactError(f"{lay.certificate_json}: expected a list under 'tasks'")
+    parts = []
+    for i, task in enumerate(tasks):
+        key = _task_key(task, i)
+        status = str(task.get("status", "?"))
+        criteria = task.get("criteria", [])
+        if isinstance(criteria, Mapping):  # {name: {...}} form
+            criteria = [{"name": k, **v} for k, v in criteria.items()]
+        head = (f"<h3>{esc(task.get('kind', task.get('task', 'task')))} "
+                f"<code>{esc(key)}</code> {badge(status, status == 'certified')}</h3>"
+                f"<p>{esc(task.get('reason', ''))}</p>")
+        figs = "".join(img(png, alt, f"task.{key}.{fig}") for fig, alt, png in task_figures(lay, task, key))
+        if not figs:
+            figs = note(f"No recorded rollout for {key} (the task was not executed).", "info")
+        parts.append(f'<div class="task" id="task-{esc(key)}">{head}{criteria_table(key, criteria)}{figs}</div>')
+    return "".join(parts)
+
+
+def _provenance_section(cert: dict | None) -> str:
+    if cert is None:
+        return ""
+    body = ""
+    for field in ("criteria", "seeds", "versions", "timings"):
+        value = cert.get(field)
+        if isinstance(value, Mapping) and value:
+            body += f"<h3>{esc(field)}</h3>" + key_value_table(value, f"cert.{field}")
+    return body
+
+
+def render_report(demo_dir: str | os.PathLike, out_html: str | os.PathLike | None = None) -> Path:
+    """Render ``DEMO_DIR/report.html`` (or ``out_html``) from the artifacts in ``demo_dir``.
+
+    The page is one file: PNG figures inline as base64 data URIs, inline CSS, no script, no URL. It is
+    written atomically (temp file + rename). Returns the path written. Raises :class:`ArtifactError`
+    when an artifact exists but is malformed (the message names it).
+    """
+    t0 = time.perf_counter()
+    lay = DemoLayout(Path(demo_dir))
+    if not lay.root.is_dir():
+        raise ArtifactError(f"{lay.root}: demo directory does not exist")
+    out = Path(out_html) if out_html is not None else lay.report_html
+    truth, graph = read_json(lay.truth_json), read_json(lay.graph_json)
+    metrics, cert, demo = read_json(lay.metrics_json), read_json(lay.certificate_json), read_json(lay.demo_json)
+
+    sections = []
+    if demo is not None:
+        sections.append(("pipeline", "Pipeline", pipeline_table(demo.get("stages", []))))
+    sections += [
+        ("scan", "1. The scan, coloured by part", _scan_section(lay)),
+        ("scene", "2. Reconstruction beside truth", _scene_section(lay, truth)),
+        ("trees", "3. Part trees and joints", _tree_section(lay, graph, truth)),
+        ("metrics", "4. Reconstruction metrics",
+         metrics_table(metrics) if metrics is not None else _missing("the metrics", lay.metrics_json)),
+        ("tasks", "5. Tasks and certificate criteria", _tasks_section(lay, cert)),
+    ]
+    prov = _provenance_section(cert)
+    if prov:
+        sections.append(("provenance", "6. Criteria, seeds, versions, timings", prov))
+
+    title = "partscene report"
+    if truth is not None:
+        title += f": {truth.get('scene', '?')} (seed {truth.get('seed', '?')})"
+    lead = _lead(cert)
+    html = page(title, lead, [(a, t) for a, t, _ in sections],
+                "".join(section(a, t, b) for a, t, b in sections))
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=".report-", suffix=".html")
+    with os.fdopen(fd, "w", encoding="utf-8") as fh:
+        fh.write(html)
+    os.replace(tmp, out)
+    log.info("report: wrote %s (%.0f kB) in %.1f s", out, out.stat().st_size / 1e3, time.perf_counter() - t0)
+    return out
+
+
+def _lead(cert: dict | None) -> str:
+    if cert is None:
+        return "Scan &rarr; parts &rarr; joints &rarr; robot &rarr; certificate. No certificate yet."
+    tasks = cert.get("tasks", []) if isinstance(cert.get("tasks"), list) else []
+    n_ok = sum(1 for t in tasks if t.get("status") == "certified")
+    return (f"Scan &rarr; parts &rarr; joints &rarr; robot &rarr; certificate: "
+            f"<b>{n_ok} of {len(tasks)} tasks certified</b>.")
+
+

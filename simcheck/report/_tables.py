@@ -1,0 +1,77 @@
+"""The report's tables: pipeline stages, reconstruction metrics, certificate criteria, provenance.
+
+Every number is shown through :func:`._html.num` with a ``data-key`` that is the number's path in its
+source file (``metrics.<path>`` in metrics.json, ``cert.<task>.<criterion>.<field>`` in
+certificate.json), so a test can check that what the page shows is what the file says.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from ._html import badge, esc, num, table
+
+__all__ = ["flatten_numbers", "pipeline_table", "metrics_table", "criteria_table", "key_value_table"]
+
+
+def flatten_numbers(doc: object, prefix: str = "") -> list[tuple[str, object]]:
+    """``(dotted.path, value)`` for every number/bool leaf of a JSON tree, in document order.
+
+    List items are addressed by their ``name``/``joint``/``id`` field when they have one, else by index.
+    """
+    out: list[tuple[str, object]] = []
+    if isinstance(doc, Mapping):
+        for k, v in doc.items():
+            out += flatten_numbers(v, f"{prefix}.{k}" if prefix else str(k))
+    elif isinstance(doc, list):
+        for i, v in enumerate(doc):
+            tag = i
+            if isinstance(v, Mapping):
+                tag = v.get("name", v.get("joint", v.get("id", i)))
+            out += flatten_numbers(v, f"{prefix}.{tag}" if prefix else str(tag))
+    elif isinstance(doc, (int, float)) or doc is None and prefix:
+        out.append((prefix, doc))
+    return out
+
+
+def pipeline_table(stages: list[Mapping]) -> str:
+    """One row per stage of demo.json: name, status, seconds, message."""
+    rows = []
+    for st in stages:
+        status = str(st.get("status", "?"))
+        ok = {"ok": True, "failed": False, "unavailable": False}.get(status)
+        rows.append([esc(st.get("name", "?")), badge(status, ok),
+                     num(st.get("seconds"), f"demo.{st.get('name')}.seconds", "s"), esc(st.get("message", ""))])
+    return table(["stage", "status", "time", "what happened"], rows, "pipeline")
+
+
+def metrics_table(metrics: Mapping) -> str:
+    """Every numeric leaf of metrics.json, one row each, keyed ``metrics.<path>``."""
+    rows = [[esc(path), num(value, f"metrics.{path}")] for path, value in flatten_numbers(metrics)]
+    return table(["metric", "value"], rows, "metrics")
+
+
+def key_value_table(doc: Mapping, key_prefix: str) -> str:
+    """A two-column table of a flat-ish mapping (numbers tagged, other values as text)."""
+    rows = []
+    for k, v in doc.items():
+        if isinstance(v, (int, float)) or v is None:
+            rows.append([esc(k), num(v, f"{key_prefix}.{k}")])
+        else:
+            rows.append([esc(k), esc(v)])
+    return table(["", ""], rows, "kv")
+
+
+def criteria_table(task_key: str, criteria: list[Mapping]) -> str:
+    """One row per certificate criterion: passed, value, threshold, margin (+ what it means)."""
+    rows = []
+    for c in criteria:
+        name = str(c.get("name", "?"))
+        key = f"cert.{task_key}.{name}"
+        passed = c.get("passed")
+        unit = str(c.get("unit", "") or "")
+        rows.append([esc(name), badge("pass" if passed else "fail", passed) if passed is not None else badge("n/a", None),
+                     num(c.get("value"), key + ".value", unit), esc(c.get("comparison", "")),
+                     num(c.get("threshold"), key + ".threshold", unit), num(c.get("margin"), key + ".margin", unit),
+                     esc(c.get("description", c.get("reason", "")))])
+    return table(["criterion", "result", "value", "", "threshold", "margin", "meaning"], rows, "criteria")

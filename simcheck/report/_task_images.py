@@ -1,0 +1,61 @@
+"""Pictures of one executed task: the joint opening over time against the plan, and key frames.
+
+Pure matplotlib over arrays; where the arrays come from is :mod:`._tasks`' business.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from ._figure import new_figure, png_from_figure
+
+__all__ = ["png_of_opening", "png_of_key_frames"]
+
+
+def png_of_opening(t: np.ndarray, q: np.ndarray, t_plan: np.ndarray | None, q_plan: np.ndarray | None,
+                   amount: float | None, required_fraction: float | None, unit: str, title: str,
+                   segments: Sequence[tuple[str, float, float]] = ()) -> bytes:
+    """Executed joint value ``q`` (n,) at times ``t`` (n,) s, against the plan ``q_plan`` at ``t_plan``.
+
+    ``amount`` is the requested opening (drawn dashed) and ``required_fraction`` * amount the level the
+    certificate demands (dotted). ``segments`` are ``(name, t_start, t_end)`` spans shaded behind.
+    ``unit`` is "m" or "rad" (radians are shown in degrees).
+    """
+    scale, shown_unit = (np.degrees(1.0), "deg") if unit == "rad" else (1.0, unit)
+    fig = new_figure(6.4, 3.2)
+    ax = fig.add_subplot(1, 1, 1)
+    for i, (name, t0, t1) in enumerate(segments):
+        ax.axvspan(t0, t1, color="#000000", alpha=0.04 if i % 2 else 0.09, lw=0)
+        ax.text((t0 + t1) / 2, 1.0, name, transform=ax.get_xaxis_transform(), ha="center", va="bottom",
+                fontsize=7, color="#555555")
+    if t_plan is not None and q_plan is not None and len(t_plan):
+        ax.plot(t_plan, np.asarray(q_plan) * scale, color="#1f77b4", lw=2.0, ls="--", label="plan")
+    ax.plot(t, np.asarray(q) * scale, color="#d62728", lw=1.6, label="executed (physics)")
+    if amount is not None:
+        ax.axhline(amount * scale, color="#444444", lw=0.8, ls="-.", label="requested")
+        if required_fraction is not None:
+            ax.axhline(required_fraction * amount * scale, color="#2ca02c", lw=0.8, ls=":",
+                       label=f"certified above ({required_fraction:.0%})")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel(f"joint opening ({shown_unit})")
+    ax.set_title(title, fontsize=10, pad=14)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left")
+    return png_from_figure(fig)
+
+
+def png_of_key_frames(frames: Sequence[tuple[str, np.ndarray]], per_row: int = 4) -> bytes:
+    """A strip of (caption, (h, w, 3) uint8 RGB) images, ``per_row`` per row."""
+    n = len(frames)
+    rows = max(1, -(-n // per_row))
+    cols = min(per_row, max(n, 1))
+    h, w = frames[0][1].shape[:2] if n else (240, 320)
+    fig = new_figure(cols * 3.2, rows * 3.2 * h / w + 0.3 * rows)
+    for i, (caption, image) in enumerate(frames):
+        ax = fig.add_subplot(rows, cols, i + 1)
+        ax.imshow(image)
+        ax.set_title(caption, fontsize=8)
+        ax.set_axis_off()
+    return png_from_figure(fig)
