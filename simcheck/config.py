@@ -1,0 +1,124 @@
+"""Every threshold simcheck uses, named once: physics/execution settings and the certificate criteria.
+
+Two frozen dataclasses:
+
+* :class:`PhysicsConfig` -- how the world is simulated and how the robot is driven (time step, solver
+  iterations, damping, emulated joint friction, controller speed limits, grasp force bound).
+* :class:`CriteriaConfig` -- what a certificate demands. It has a ``name`` and a ``version``; a
+  certificate records both and every value, so a certificate says which rules it was judged by.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+__all__ = ["PhysicsConfig", "CriteriaConfig", "DEFAULT_PHYSICS", "DEFAULT_CRITERIA"]
+
+
+@dataclass(frozen=True)
+class PhysicsConfig:
+    """Simulation and execution settings (SI units).
+
+    Attributes:
+        time_step: physics step, seconds (240 Hz, PyBullet's default and the rate its solver is tuned for).
+        solver_iterations: constraint solver iterations per step (fixed, for determinism).
+        gravity: gravity along world -z, m/s^2.
+        scene_joint_damping: extra linear/angular link damping for scene bodies (PyBullet ``changeDynamics``).
+        min_joint_friction: emulated Coulomb friction of a scene joint, N or N*m, used when the URDF's
+            ``<dynamics friction>`` is smaller (PyBullet ignores URDF joint friction; we emulate it with a
+            zero-velocity motor of this force, which is also what keeps an opened door from drifting).
+        overlap_tolerance: two scene links that already interpenetrate deeper than this (metres) in the
+            loaded (closed) state never collide with each other (reconstructed primitives overlap by mm).
+        speed_scale: fraction of each robot joint's URDF velocity limit used to time-parametrise a plan.
+        max_joint_speed: cap on any robot joint speed while executing, rad/s or m/s.
+        open_speed_scale: extra slow-down of the opening segment (pulling an object is done gently).
+        settle_time: seconds the robot holds still after each segment before the next one starts.
+        final_settle_time: seconds simulated after the last segment before the end state is measured.
+        gripper_close_time: seconds allowed for the fingers to close on a handle.
+        gripper_open_time: seconds allowed for the fingers to open on release.
+        grasp_max_force: force bound of the grasp attachment, N (bounded so that a motion the object
+            cannot follow makes the grasp slip instead of dragging the object through its joint).
+        grasp_break_distance: slip (metres) between the tool and the grasped point at which the
+            attachment is considered torn off and removed, as a real grasp would let go.
+        grasp_min_finger_contacts: finger links that must touch the handle link before attaching.
+        robot_position_gain: PyBullet position-control gain of the robot joints.
+        record_every: record one rollout sample every this many physics steps.
+        contact_tolerance: penetration depth (metres) below which a contact point is ignored when recording.
+    """
+
+    time_step: float = 1.0 / 240.0
+    solver_iterations: int = 50
+    gravity: float = 9.81
+    scene_joint_damping: float = 0.04
+    min_joint_friction: float = 0.5
+    overlap_tolerance: float = 0.002
+    speed_scale: float = 0.5
+    max_joint_speed: float = 0.8
+    open_speed_scale: float = 0.6
+    settle_time: float = 0.25
+    final_settle_time: float = 1.0
+    gripper_close_time: float = 0.6
+    gripper_open_time: float = 0.4
+    grasp_max_force: float = 400.0
+    grasp_break_distance: float = 0.06
+    grasp_min_finger_contacts: int = 2
+    robot_position_gain: float = 0.3
+    record_every: int = 4
+    contact_tolerance: float = 0.0
+
+    def replace(self, **changes) -> "PhysicsConfig":
+        """A copy with ``changes`` applied."""
+        return dataclasses.replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class CriteriaConfig:
+    """What a task must show to be certified. Versioned: a certificate records ``name``, ``version``
+    and every field below.
+
+    Attributes:
+        opened_fraction: minimum opened joint value / requested amount at the end (0.9: the issue's
+            "joint reaches >= 90% of the requested amount").
+        settled_linear_speed: maximum speed of the moved link at the end, m/s (0.1, as in common
+            open-cabinet benchmarks such as ManiSkill's OpenCabinetDrawer/Door).
+        settled_angular_speed: maximum angular speed of the moved link at the end, rad/s (1.0, same source).
+        handle_path_tolerance: maximum distance, metres, between the grasped point of the handle and
+            the planned tool position, at every recorded instant of the opening segment and at the end
+            of it (0.03 m: a few cm of controller lag and grasp compliance is normal; a 30 deg axis
+            error over a 0.3 m pull is ~0.15 m).
+        contact_force_tolerance: robot-scene contacts other than gripper-handle are unexpected when
+            their normal force exceeds this, N (small numerical brushes are tolerated).
+        contact_penetration_tolerance: ... or when their penetration is deeper than this, metres.
+        grasp_slip_tolerance: maximum slip between the tool frame and the grasped point of the handle
+            during the opening segment, metres; the grasp also must exist for the whole segment.
+        joint_limit_tolerance: maximum excursion of a robot joint beyond its URDF limits, rad or m.
+        plan_penetration_tolerance: penetration depth, metres, above which a state of the densely
+            interpolated plan counts as colliding in the independent PyBullet re-check.
+        recheck_resolution: maximum joint step, rad or m, between re-checked states of the plan.
+    """
+
+    name: str = "partscene-default"
+    version: str = "1.0"
+    opened_fraction: float = 0.9
+    settled_linear_speed: float = 0.1
+    settled_angular_speed: float = 1.0
+    handle_path_tolerance: float = 0.03
+    contact_force_tolerance: float = 5.0
+    contact_penetration_tolerance: float = 0.005
+    grasp_slip_tolerance: float = 0.02
+    joint_limit_tolerance: float = 0.01
+    plan_penetration_tolerance: float = 0.005
+    recheck_resolution: float = 0.02
+
+    def replace(self, **changes) -> "CriteriaConfig":
+        """A copy with ``changes`` applied."""
+        return dataclasses.replace(self, **changes)
+
+    def to_dict(self) -> dict:
+        """Every field, JSON-ready."""
+        return dataclasses.asdict(self)
+
+
+DEFAULT_PHYSICS = PhysicsConfig()
+DEFAULT_CRITERIA = CriteriaConfig()

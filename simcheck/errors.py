@@ -1,0 +1,41 @@
+"""Errors raised by :mod:`simcheck` for inputs it cannot use.
+
+Expected outcomes (a task that fails certification, a plan that was not found) are never raised: they
+are :class:`simcheck.TaskCertificate` entries with a :class:`simcheck.TaskStatus` and a reason. The
+exceptions below are for input that cannot be certified at all; every message names the file and the
+joint, link or field. The CLI maps :class:`SimcheckInputError` (and ``planners.PlannerInputError``) to
+exit code 2.
+"""
+
+from __future__ import annotations
+
+__all__ = ["SimcheckError", "SimcheckInputError", "SceneLoadError", "TaskSpecError", "RobotBindingError",
+           "ScenarioError", "RolloutFormatError"]
+
+
+class SimcheckError(Exception):
+    """Base class of every exception raised by :mod:`simcheck`."""
+
+
+class SimcheckInputError(SimcheckError, ValueError):
+    """The input (scene URDF, task, robot, scenario) cannot be used; the message says why."""
+
+
+class SceneLoadError(SimcheckInputError):
+    """A scene URDF is missing, unparsable or rejected by PyBullet (names the file)."""
+
+
+class TaskSpecError(SimcheckInputError):
+    """A task names a missing joint, a fixed joint, or a joint of the wrong type (names file and joint)."""
+
+
+class RobotBindingError(SimcheckInputError):
+    """A robot description does not match its URDF (names the URDF and the joint or link)."""
+
+
+class ScenarioError(SimcheckInputError):
+    """A scenario YAML file is malformed (names the file and the field)."""
+
+
+class RolloutFormatError(SimcheckError):
+    """A saved rollout file is not a partscene rollout (names the file and the missing array)."""

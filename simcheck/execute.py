@@ -1,0 +1,295 @@
+"""Execution with physics: drive the robot through a plan in a :class:`World` and record a :class:`Rollout`.
+
+How the robot is driven: every segment's waypoints are time-parametrised so that no joint exceeds
+``speed_scale`` x its URDF velocity limit (capped at ``max_joint_speed``; the opening segment is slower
+by ``open_speed_scale``); at every 240 Hz physics step the robot's joints get a position target and a
+feed-forward velocity (PyBullet position control with the joints' URDF effort limits). The scene's joints
+are never set during a task: the object moves only because the robot pushes or pulls it.
+
+How the grasp is made -- a force-bounded attachment, not friction alone. After the grasp segment the
+fingers close; only if at least ``grasp_min_finger_contacts`` finger links then touch the handle link is a
+fixed constraint created between the tool link and the handle, at their current relative pose, with
+``maxForce = grasp_max_force`` (400 N). Why: in PyBullet a pure friction grasp of a thin handle pulled
+a drawer when the base moved but slipped when the arm pulled, unless handle friction, finger force
+and finger coupling were tuned per object (STACK.md); the attachment is reliable on any handle yet
+still honest: it exists only where the real fingers closed on the real handle, its force is bounded so
+that a motion the object cannot follow (a wrong axis, a wrong hinge) makes it lag, and it is torn off
+(removed) when the grasped point drifts more than ``grasp_break_distance`` from the tool -- a grasp
+that would have slipped is reported as lost, never as held.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+from collections import defaultdict
+
+import numpy as np
+
+from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
+from simcheck.planned_task import GRASP, OPEN, RELEASE, PlannedSegment, PlannedTask
+from simcheck.rollout import Rollout
+from simcheck.world import World
+
+__all__ = ["execute_task", "handle_link_for", "moving_link_for", "timed_waypoints"]
+
+log = logging.getLogger(__name__)
+
+
+def moving_link_for(world: World, joint: str) -> str:
+    """The child link of scene joint ``joint``."""
+    return world.scene_joint(joint).child_link
+
+
+def handle_link_for(world: World, joint: str, preferred: str | None = None) -> str:
+    """The link to grasp to move ``joint``: ``preferred`` if the scene has it; else a descendant of the
+    joint's moving link rigidly fixed to it whose name says "handle"; else the moving link itself
+    (a handle modelled as geometry inside the drawer/door link)."""
+    if preferred and world.has_scene_link(preferred):
+        return preferred
+    moving = moving_link_for(world, joint)
+    frontier = [moving]
+    while frontier:
+        parent = frontier.pop()
+        for info in world.scene_joints():
+            if info.parent_link == parent and info.type == "fixed":
+                if "handle" in info.child_link.lower():
+                    return info.child_link
+                frontier.append(info.child_link)
+    return moving
+
+
+def timed_waypoints(q: np.ndarray, vmax: np.ndarray, min_dt: float) -> np.ndarray:
+    """(n,) times, seconds, at which to reach the (n, dof) waypoints ``q`` so that joint j never
+    exceeds ``vmax[j]`` (rad/s or m/s) on the straight segments between waypoints; starts at 0."""
+    q = np.atleast_2d(q)
+    if len(q) == 1:
+        return np.zeros(1)
+    dq = np.abs(np.diff(q, axis=0))
+    dt = np.maximum((dq / vmax[None, :]).max(axis=1), min_dt)
+    return np.concatenate([[0.0], np.cumsum(dt)])
+
+
+class _Recorder:
+    """Accumulates samples; contacts are aggregated (max force/depth per pair) between samples."""
+
+    def __init__(self, world: World, joint: str, moving: str, handle: str, planned: PlannedTask,
+                 config: PhysicsConfig) -> None:
+        self.world, self.joint, self.moving, self.handle, self.config = world, joint, moving, handle, config
+        self.rows = defaultdict(list)
+        self.contacts: dict = {}
+        self.obj_contacts: dict = {}
+        self.contact_rows: list = []
+        self.obj_rows: list = []
+        self.t = 0.0
+        self.steps = 0
+        self.segment = -1
+        self.planned_tool = np.full(3, np.nan)
+        self.planned_object_q = np.nan
+        self.T_handle_grasp: np.ndarray | None = None
+
+    def grasp_point(self) -> np.ndarray:
+        if self.T_handle_grasp is None or not self.world.attached:
+            return np.full(3, np.nan)
+        return (self.world.scene_link_pose(self.handle) @ self.T_handle_grasp)[:3, 3]
+
+    def after_step(self) -> None:
+        w = self.world
+        self.t += self.config.time_step
+        self.steps += 1
+        for c in w.robot_contacts(self.config.contact_tolerance):
+            key = (c.link_a, c.link_b)
+            f, d = self.contacts.get(key, (0.0, 0.0))
+            self.contacts[key] = (max(f, c.force), max(d, -c.distance))
+        for c in w.scene_link_contacts(self.moving, self.config.contact_tolerance):
+            self.obj_contacts[c.link_b] = max(self.obj_contacts.get(c.link_b, 0.0), c.force)
+        if self.steps % self.config.record_every == 0:
+            self.sample()
+
+    def sample(self) -> None:
+        w, r = self.world, self.rows
+        k = len(r["t"])
+        q, qd = w.scene_joint_state(self.joint)
+        v, om = w.scene_link_velocity(self.moving)
+        r["t"].append(self.t)
+        r["segment"].append(self.segment)
+        r["robot_q"].append(w.robot_q())
+        r["object_q"].append(q)
+        r["object_qd"].append(qd)
+        r["T_world_handle"].append(w.scene_link_pose(self.handle))
+        r["tool_pos"].append(w.robot_link_pose(w.robot_spec.tool_link)[:3, 3])
+        r["grasp_point"].append(self.grasp_point())
+        r["planned_tool_pos"].append(np.array(self.planned_tool, dtype=float))
+        r["planned_object_q"].append(self.planned_object_q)
+        r["link_speed"].append(float(np.linalg.norm(v)))
+        r["link_angular_speed"].append(float(np.linalg.norm(om)))
+        r["grasp_active"].append(w.attached)
+        r["grasp_force"].append(w.grasp_force())
+        r["finger_q"].append(w.finger_q())
+        r["finger_contacts"].append(w.finger_contact_count(self.handle))
+        for (a, b), (f, d) in self.contacts.items():
+            self.contact_rows.append((k, a, b, f, d))
+        for b, f in self.obj_contacts.items():
+            self.obj_rows.append((k, b, f))
+        self.contacts.clear()
+        self.obj_contacts.clear()
+
+
+def _step(world: World, rec: _Recorder, n: int, on_step=None) -> None:
+    for _ in range(n):
+        world.step()
+        rec.after_step()
+        if on_step is not None:
+            on_step()
+
+
+def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAULT_PHYSICS, *,
+                 requested_amount: float | None = None, reset_robot: bool = True,
+                 frame_callback=None) -> Rollout:
+    """Execute ``task`` in ``world`` with physics and return the recorded :class:`Rollout`.
+
+    Args:
+        world: a world holding the scene the plan is executed on (the estimate, or the reference with
+            ``--against``) and the robot. Its scene joints are never reset here.
+        task: the plan. ``task.joint_names`` must be the world robot's ``joint_names``.
+        requested_amount: the opening asked for, in the executed joint's units (default ``task.amount``).
+        reset_robot: place the robot at the plan's first configuration first (the robot's start state;
+            the scene is left as it is, so a scenario carries the world state from task to task).
+        frame_callback: called as ``frame_callback(label)`` at key frames ("start", "grasped",
+            "opened", "end") to take pictures.
+    """
+    t0 = time.perf_counter()
+    robot = world.robot_spec
+    if tuple(task.joint_names) != tuple(robot.joint_names):
+        raise ValueError(f"plan for joint {task.joint!r} has robot joints {task.joint_names}, the world's robot "
+                         f"has {robot.joint_names}")
+    joint = task.joint
+    moving = moving_link_for(world, joint)
+    handle = handle_link_for(world, joint, task.grasp_link)
+    rec = _Recorder(world, joint, moving, handle, task, config)
+    q0_obj = world.scene_joint_state(joint)[0]
+    vmax_urdf = world.robot_max_velocity()
+    vmax = np.where(vmax_urdf > 0, np.minimum(vmax_urdf * config.speed_scale, config.max_joint_speed),
+                    config.max_joint_speed)
+    notes: list[str] = []
+    if reset_robot:
+        world.reset_robot(task.segments[0].q[0], fingers_open=True)
+    fingers_open = True
+    snap = frame_callback or (lambda label: None)
+    snap("start")
+    rec.sample()
+
+    def check_slip() -> None:
+        if world.attached and rec.T_handle_grasp is not None:
+            tool = world.robot_link_pose(robot.tool_link)[:3, 3]
+            slip = float(np.linalg.norm(rec.grasp_point() - tool))
+            if slip > config.grasp_break_distance:
+                world.detach()
+                notes.append(f"grasp torn off at t={rec.t:.2f} s: the handle lagged the tool by {slip:.3f} m "
+                             f"(attachment force bound {config.grasp_max_force:.0f} N)")
+
+    def set_fingers(open_: bool, seconds: float, hold_q: np.ndarray) -> None:
+        nonlocal fingers_open
+        if open_:
+            world.detach()
+        world.command_fingers(open_)
+        world.command_robot(hold_q, np.zeros_like(hold_q))
+        _step(world, rec, max(1, int(round(seconds / config.time_step))), check_slip)
+        fingers_open = open_
+
+    def close_and_grasp(hold_q: np.ndarray) -> None:
+        set_fingers(False, config.gripper_close_time, hold_q)
+        touching = world.finger_contact_count(handle)
+        if touching >= config.grasp_min_finger_contacts:
+            world.attach(handle, config.grasp_max_force)
+            T_w_tool = world.robot_link_pose(robot.tool_link)
+            rec.T_handle_grasp = np.linalg.inv(world.scene_link_pose(handle)) @ T_w_tool
+            snap("grasped")
+        else:
+            notes.append(f"fingers closed on {touching} of {config.grasp_min_finger_contacts} required contacts "
+                         f"with handle link {handle!r}: no grasp")
+
+    hold = task.segments[0].q[0]
+    for i, seg in enumerate(task.segments):
+        rec.segment = i
+        want_open = seg.gripper == "open"
+        if want_open and not fingers_open or seg.name == RELEASE and not fingers_open:
+            set_fingers(True, config.gripper_open_time, hold)
+        if not want_open and fingers_open and seg.name != GRASP:
+            close_and_grasp(hold)
+        hold = _follow(world, rec, seg, vmax * (config.open_speed_scale if seg.name == OPEN else 1.0), config,
+                       check_slip)
+        if seg.name == OPEN:
+            snap("opened")
+        if seg.name == GRASP and fingers_open:
+            close_and_grasp(hold)
+        rec.planned_tool = np.full(3, np.nan)
+        rec.planned_object_q = np.nan
+    rec.segment = -1
+    world.command_robot(hold, np.zeros_like(hold))
+    _step(world, rec, max(1, int(round(config.final_settle_time / config.time_step))), check_slip)
+    rec.sample()
+    snap("end")
+    lo, hi = world.robot_limits()
+    rows = rec.rows
+    cr = rec.contact_rows
+    orows = rec.obj_rows
+    return Rollout(
+        joint=joint, moving_link=moving, handle_link=handle, robot_joint_names=tuple(robot.joint_names),
+        segment_names=tuple(s.name for s in task.segments),
+        gripper_links=tuple(dict.fromkeys(robot.gripper_links + robot.finger_links + (robot.tool_link,))),
+        requested_amount=float(task.amount if requested_amount is None else requested_amount),
+        object_q0=float(q0_obj), grasp_note="; ".join(notes), time_step=config.time_step,
+        t=np.asarray(rows["t"]), segment=np.asarray(rows["segment"], dtype=int),
+        robot_q=np.asarray(rows["robot_q"]), robot_lower=lo, robot_upper=hi,
+        object_q=np.asarray(rows["object_q"]), object_qd=np.asarray(rows["object_qd"]),
+        T_world_handle=np.asarray(rows["T_world_handle"]), tool_pos=np.asarray(rows["tool_pos"]),
+        grasp_point=np.asarray(rows["grasp_point"]), planned_tool_pos=np.asarray(rows["planned_tool_pos"]),
+        planned_object_q=np.asarray(rows["planned_object_q"], dtype=float),
+        link_speed=np.asarray(rows["link_speed"]), link_angular_speed=np.asarray(rows["link_angular_speed"]),
+        grasp_active=np.asarray(rows["grasp_active"], dtype=bool), grasp_force=np.asarray(rows["grasp_force"]),
+        finger_q=np.asarray(rows["finger_q"]).reshape(len(rows["t"]), -1),
+        finger_contacts=np.asarray(rows["finger_contacts"], dtype=int),
+        contact_sample=np.asarray([c[0] for c in cr], dtype=int),
+        contact_robot_link=np.asarray([c[1] for c in cr], dtype=str),
+        contact_scene_link=np.asarray([c[2] for c in cr], dtype=str),
+        contact_force=np.asarray([c[3] for c in cr], dtype=float),
+        contact_depth=np.asarray([c[4] for c in cr], dtype=float),
+        object_contact_sample=np.asarray([c[0] for c in orows], dtype=int),
+        object_contact_link=np.asarray([c[1] for c in orows], dtype=str),
+        object_contact_force=np.asarray([c[2] for c in orows], dtype=float),
+        wall_time=time.perf_counter() - t0)
+
+
+def _follow(world: World, rec: _Recorder, seg: PlannedSegment, vmax: np.ndarray, config: PhysicsConfig,
+            on_step) -> np.ndarray:
+    """Drive the robot along ``seg`` (time-parametrised), then hold ``settle_time``; returns the last q."""
+    times = timed_waypoints(seg.q, vmax, config.time_step)
+    n_steps = int(np.ceil(times[-1] / config.time_step))
+    tool = seg.T_world_tool[:, :3, 3] if seg.T_world_tool is not None else None
+    for k in range(1, n_steps + 1):
+        tk = min(k * config.time_step, times[-1])
+        j = int(np.clip(np.searchsorted(times, tk, side="right") - 1, 0, len(times) - 2)) if len(times) > 1 else 0
+        if len(times) > 1:
+            span = times[j + 1] - times[j]
+            a = (tk - times[j]) / span
+            q = (1 - a) * seg.q[j] + a * seg.q[j + 1]
+            qd = (seg.q[j + 1] - seg.q[j]) / span
+            if tool is not None:
+                rec.planned_tool = (1 - a) * tool[j] + a * tool[j + 1]
+            if seg.object_q is not None:
+                rec.planned_object_q = float((1 - a) * seg.object_q[j] + a * seg.object_q[j + 1])
+        else:
+            q, qd = seg.q[0], np.zeros(seg.q.shape[1])
+        world.command_robot(q, qd)
+        world.step()
+        rec.after_step()
+        on_step()
+    last = seg.q[-1]
+    if tool is not None:
+        rec.planned_tool = tool[-1]
+    if seg.object_q is not None:
+        rec.planned_object_q = float(seg.object_q[-1])
+    world.command_robot(last, np.zeros_like(last))
+    _step(world, rec, max(1, int(round(config.settle_time / config.time_step))), on_step)
+    return last

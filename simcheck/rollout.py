@@ -1,0 +1,192 @@
+"""The recorded rollout of one executed task: arrays over time, saved to / loaded from ``.npz``.
+
+A :class:`Rollout` is everything the certificate's criteria look at; they are pure functions of it
+(:mod:`simcheck.criteria`), so they can be tested on rollouts built by hand, without PyBullet.
+
+Sample ``i`` is taken at time ``t[i]`` (seconds since the task started). World frame, metres, radians.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+
+import numpy as np
+
+from simcheck.errors import RolloutFormatError
+
+__all__ = ["Rollout", "ROLLOUT_FORMAT"]
+
+ROLLOUT_FORMAT = "partscene.rollout/1"
+
+_META = ("joint", "moving_link", "handle_link", "robot_joint_names", "segment_names", "gripper_links",
+         "requested_amount", "object_q0", "grasp_note", "time_step")
+
+
+@dataclass(frozen=True)
+class Rollout:
+    """Arrays recorded while executing one task (n samples; m robot contact records; k object contact records).
+
+    Attributes:
+        joint: the task joint (URDF name) in the executed world.
+        moving_link: the link the task joint moves.
+        handle_link: the link that was grasped (the handle, or the moving link itself).
+        robot_joint_names: (dof,) robot joint names, the columns of ``robot_q``.
+        segment_names: names of the plan's segments; ``segment`` indexes them.
+        gripper_links: robot links allowed to touch ``handle_link``.
+        requested_amount: the opening asked for, rad or m (in the executed joint's units).
+        object_q0: the task joint's value when the task started.
+        grasp_note: how the grasp went ("" when the grasp was made and kept).
+        time_step: physics time step, seconds.
+        t: (n,) seconds.
+        segment: (n,) int index into ``segment_names``; -1 while settling after the last segment.
+        robot_q: (n, dof) robot joint positions.  robot_lower / robot_upper: (dof,) URDF limits (+-inf: none).
+        object_q, object_qd: (n,) task joint position / velocity.
+        T_world_handle: (n, 4, 4) handle link pose.
+        tool_pos: (n, 3) robot tool frame position.
+        grasp_point: (n, 3) world position of the grasped point of the handle (NaN before the grasp).
+        planned_tool_pos: (n, 3) planned tool position at that instant (NaN where the plan has none).
+        planned_object_q: (n,) planned task joint value (NaN where the plan has none).
+        link_speed, link_angular_speed: (n,) speed of ``moving_link``, m/s and rad/s.
+        grasp_active: (n,) bool, the grasp attachment exists.  grasp_force: (n,) its force, N.
+        finger_q: (n, n_fingers).  finger_contacts: (n,) int finger links touching the handle.
+        contact_sample, contact_robot_link, contact_scene_link, contact_force, contact_depth: (m,) robot
+            contacts -- per sample and pair, the largest normal force (N) and penetration (m, >= 0) over
+            the physics steps since the previous sample; ``contact_scene_link`` is "floor" for the floor.
+        object_contact_sample, object_contact_link, object_contact_force: (k,) contacts of the moving
+            link with other scene links / the floor (what blocked it), same aggregation.
+        wall_time: seconds of wall-clock time the execution took.
+    """
+
+    joint: str
+    moving_link: str
+    handle_link: str
+    robot_joint_names: tuple[str, ...]
+    segment_names: tuple[str, ...]
+    gripper_links: tuple[str, ...]
+    requested_amount: float
+    object_q0: float
+    grasp_note: str
+    time_step: float
+    t: np.ndarray
+    segment: np.ndarray
+    robot_q: np.ndarray
+    robot_lower: np.ndarray
+    robot_upper: np.ndarray
+    object_q: np.ndarray
+    object_qd: np.ndarray
+    T_world_handle: np.ndarray
+    tool_pos: np.ndarray
+    grasp_point: np.ndarray
+    planned_tool_pos: np.ndarray
+    planned_object_q: np.ndarray
+    link_speed: np.ndarray
+    link_angular_speed: np.ndarray
+    grasp_active: np.ndarray
+    grasp_force: np.ndarray
+    finger_q: np.ndarray
+    finger_contacts: np.ndarray
+    contact_sample: np.ndarray
+    contact_robot_link: np.ndarray
+    contact_scene_link: np.ndarray
+    contact_force: np.ndarray
+    contact_depth: np.ndarray
+    object_contact_sample: np.ndarray
+    object_contact_link: np.ndarray
+    object_contact_force: np.ndarray
+    wall_time: float = 0.0
+
+    def __post_init__(self) -> None:
+        n = len(self.t)
+        for name in ("segment", "robot_q", "object_q", "object_qd", "T_world_handle", "tool_pos", "grasp_point",
+                     "planned_tool_pos", "planned_object_q", "link_speed", "link_angular_speed", "grasp_active",
+                     "grasp_force", "finger_q", "finger_contacts"):
+            if len(getattr(self, name)) != n:
+                raise RolloutFormatError(f"rollout of joint {self.joint!r}: {name} has {len(getattr(self, name))} "
+                                         f"samples, t has {n}")
+
+    @property
+    def n(self) -> int:
+        return len(self.t)
+
+    @property
+    def duration(self) -> float:
+        """Simulated seconds."""
+        return float(self.t[-1]) if self.n else 0.0
+
+    def in_segment(self, name: str) -> np.ndarray:
+        """(n,) bool mask of the samples recorded during segment(s) called ``name``."""
+        ids = [i for i, s in enumerate(self.segment_names) if s == name]
+        return np.isin(self.segment, ids)
+
+    # ------------------------------------------------------------------ I/O
+    def save(self, path: str | Path) -> Path:
+        """Write the rollout to ``path`` (.npz), atomically. Returns the path."""
+        path = Path(path)
+        arrays = {}
+        meta = {"format": ROLLOUT_FORMAT}
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if f.name in _META or f.name == "wall_time":
+                meta[f.name] = list(v) if isinstance(v, tuple) else v
+            else:
+                arrays[f.name] = np.asarray(v)
+        arrays["meta"] = np.array(json.dumps(meta))
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".npz.tmp")
+        try:
+            with os.fdopen(fd, "wb") as fh:
+                np.savez_compressed(fh, **arrays)
+            os.replace(tmp, path)
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+        return path
+
+    @classmethod
+    def load(cls, path: str | Path) -> "Rollout":
+        """Read a rollout written by :meth:`save`.
+
+        Raises:
+            RolloutFormatError: not a partscene rollout, or an array is missing (names the file).
+        """
+        path = Path(path)
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                meta = json.loads(str(data["meta"]))
+                if meta.get("format") != ROLLOUT_FORMAT:
+                    raise RolloutFormatError(f"{path}: format {meta.get('format')!r}, expected {ROLLOUT_FORMAT!r}")
+                kwargs = {}
+                for f in fields(cls):
+                    if f.name in meta:
+                        v = meta[f.name]
+                        kwargs[f.name] = tuple(v) if isinstance(v, list) else v
+                    else:
+                        if f.name not in data:
+                            raise RolloutFormatError(f"{path}: array {f.name!r} missing")
+                        kwargs[f.name] = data[f.name]
+        except (OSError, KeyError, ValueError) as exc:
+            if isinstance(exc, RolloutFormatError):
+                raise
+            raise RolloutFormatError(f"{path}: not a readable rollout ({exc})") from exc
+        return cls(**kwargs)
+
+    def isclose(self, other: "Rollout", atol: float = 1e-9) -> bool:
+        """True when every field of ``other`` equals this one (floats within ``atol``)."""
+        for f in fields(self):
+            a, b = getattr(self, f.name), getattr(other, f.name)
+            if isinstance(a, np.ndarray) and a.dtype.kind == "f":
+                if a.shape != np.shape(b) or not np.allclose(a, b, atol=atol, equal_nan=True):
+                    return False
+            elif isinstance(a, np.ndarray):
+                if not np.array_equal(a, np.asarray(b)):
+                    return False
+            elif isinstance(a, float):
+                if abs(a - float(b)) > atol:
+                    return False
+            elif tuple(a) != tuple(b) if isinstance(a, tuple) else a != b:
+                return False
+        return True

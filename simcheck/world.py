@@ -1,0 +1,482 @@
+"""The PyBullet world: the only module of partscene's simcheck that imports ``pybullet``.
+
+A :class:`World` owns one PyBullet client (DIRECT unless ``gui=True``; never a module global). It loads
+a floor plane, the scene URDF with a fixed base and the robot URDF with a fixed base at the world origin
+(a mobile base is modelled by the robot's base joints). On load it
+
+* disables the default velocity motors PyBullet puts on every scene joint (they lock drawers and
+  doors) and replaces them with a zero-velocity motor whose force is the joint's Coulomb friction
+  (PyBullet applies URDF ``damping`` but ignores ``friction``: we emulate it);
+* enables collisions between scene links except between a link and its ancestors, and except pairs
+  that already interpenetrate in the loaded state (reconstructed primitives may overlap by mm);
+* fixes the time step and solver iterations so that stepping is deterministic.
+
+Everything is addressed by NAME (joints and links); PyBullet indices and the (x, y, z, w) quaternion
+order stay inside this module. Poses come out as ``T_world_link`` (4, 4) float64 arrays, metres.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
+from simcheck.errors import RobotBindingError, SceneLoadError, TaskSpecError
+from simcheck.robot_binding import SimRobot
+
+import pybullet as pb
+
+__all__ = ["World", "JointInfo", "ContactPoint", "display_available", "pybullet_version"]
+
+log = logging.getLogger(__name__)
+
+FLOOR = "floor"
+_JOINT_TYPES = {pb.JOINT_REVOLUTE: "revolute", pb.JOINT_PRISMATIC: "prismatic", pb.JOINT_FIXED: "fixed",
+                pb.JOINT_SPHERICAL: "spherical", pb.JOINT_PLANAR: "planar"}
+
+
+def pybullet_version() -> str:
+    """The installed pybullet version (from the package metadata)."""
+    from importlib.metadata import version
+    return version("pybullet")
+
+
+def display_available() -> bool:
+    """True when an X display is available for ``--gui``."""
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+@dataclass(frozen=True)
+class JointInfo:
+    """A joint as loaded in PyBullet. ``lower``/``upper`` in rad or m; ``damping``/``friction`` from the URDF."""
+
+    name: str
+    type: str
+    index: int
+    child_link: str
+    parent_link: str
+    lower: float
+    upper: float
+    max_force: float
+    max_velocity: float
+    damping: float
+    friction: float
+
+
+@dataclass(frozen=True)
+class ContactPoint:
+    """One contact point between a robot link (or scene link) and another body's link.
+
+    ``force`` is the normal force, N; ``distance`` is negative for penetration, metres;
+    ``position`` (3,) on the first body, world frame.
+    """
+
+    link_a: str
+    link_b: str
+    force: float
+    distance: float
+    position: tuple[float, float, float]
+
+
+def _T_from_pos_quat(pos, quat_xyzw) -> np.ndarray:
+    T = np.eye(4)
+    T[:3, :3] = np.asarray(pb.getMatrixFromQuaternion(quat_xyzw), dtype=float).reshape(3, 3)
+    T[:3, 3] = pos
+    return T
+
+
+def _quat_xyzw_from_R(R: np.ndarray) -> tuple[float, float, float, float]:
+    from scipy.spatial.transform import Rotation
+    x, y, z, w = Rotation.from_matrix(np.asarray(R, dtype=float)).as_quat()
+    return float(x), float(y), float(z), float(w)
+
+
+class World:
+    """A PyBullet client holding a floor, one scene and one robot.
+
+    Args:
+        scene_urdf: the scene URDF (root link ``world`` or any fixed root), loaded with a fixed base.
+        robot: the robot to load (fixed base at the origin), or ``None`` for a scene-only world.
+        config: physics settings.
+        gui: open a PyBullet GUI window (raises :class:`SceneLoadError` when no display exists).
+
+    Raises:
+        SceneLoadError: the scene URDF is missing or PyBullet cannot load it (names the file).
+        RobotBindingError: a robot joint or link named by ``robot`` is not in its URDF.
+    """
+
+    def __init__(self, scene_urdf: str | Path, robot: SimRobot | None = None,
+                 config: PhysicsConfig = DEFAULT_PHYSICS, *, gui: bool = False) -> None:
+        self.config = config
+        self.scene_urdf = Path(scene_urdf)
+        if not self.scene_urdf.is_file():
+            raise SceneLoadError(f"scene URDF {self.scene_urdf} does not exist")
+        if gui and not display_available():
+            raise SceneLoadError("--gui needs a display (DISPLAY is not set); run headless without --gui")
+        self.client = pb.connect(pb.GUI if gui else pb.DIRECT)
+        self._grasp: int | None = None
+        try:
+            self._setup_physics()
+            self.floor = self._load_floor()
+            self.scene = self._load_scene()
+            self.robot_spec = robot
+            self.robot = self._load_robot(robot) if robot is not None else None
+        except Exception:
+            self.close()
+            raise
+
+    # ------------------------------------------------------------------ lifecycle
+    def close(self) -> None:
+        """Disconnect the client (idempotent)."""
+        if self.client is not None and self.client >= 0:
+            with contextlib.suppress(Exception):
+                pb.disconnect(physicsClientId=self.client)
+        self.client = None
+
+    def __enter__(self) -> "World":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def _setup_physics(self) -> None:
+        c = self.client
+        pb.resetSimulation(physicsClientId=c)
+        pb.setPhysicsEngineParameter(fixedTimeStep=self.config.time_step, numSolverIterations=self.config.solver_iterations,
+                                     numSubSteps=0, deterministicOverlappingPairs=1, physicsClientId=c)
+        pb.setGravity(0, 0, -self.config.gravity, physicsClientId=c)
+
+    def _load_floor(self) -> int:
+        shape = pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=self.client)
+        return pb.createMultiBody(0, shape, physicsClientId=self.client)
+
+    def _load_scene(self) -> int:
+        flags = (pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_USE_SELF_COLLISION
+                 | pb.URDF_USE_SELF_COLLISION_EXCLUDE_ALL_PARENTS)
+        try:
+            body = pb.loadURDF(str(self.scene_urdf), useFixedBase=True, flags=flags, physicsClientId=self.client)
+        except pb.error as exc:
+            raise SceneLoadError(f"PyBullet cannot load scene URDF {self.scene_urdf}: {exc}") from exc
+        self._scene_joints, self._scene_links = self._index(body)
+        for info in self._scene_joints.values():
+            if info.type in ("revolute", "prismatic"):
+                friction = max(info.friction, self.config.min_joint_friction)
+                pb.setJointMotorControl2(body, info.index, pb.VELOCITY_CONTROL, targetVelocity=0.0, force=friction,
+                                         physicsClientId=self.client)
+                pb.changeDynamics(body, info.index, linearDamping=self.config.scene_joint_damping,
+                                  angularDamping=self.config.scene_joint_damping, physicsClientId=self.client)
+        self._filter_initial_overlaps(body)
+        return body
+
+    def _filter_initial_overlaps(self, body: int) -> None:
+        """Disable collision between scene links that already interpenetrate as loaded."""
+        pb.performCollisionDetection(physicsClientId=self.client)
+        names = {v: k for k, v in self._scene_links.items()}
+        seen = set()
+        for cp in pb.getContactPoints(bodyA=body, bodyB=body, physicsClientId=self.client):
+            a, b, dist = cp[3], cp[4], cp[8]
+            if dist < -self.config.overlap_tolerance and (a, b) not in seen:
+                seen.add((a, b))
+                pb.setCollisionFilterPair(body, body, a, b, 0, physicsClientId=self.client)
+                log.info("scene links %s and %s overlap by %.1f mm as loaded: not colliding with each other",
+                         names.get(a), names.get(b), -dist * 1e3)
+
+    def _load_robot(self, robot: SimRobot) -> int:
+        try:
+            body = pb.loadURDF(str(robot.urdf), useFixedBase=True, physicsClientId=self.client)
+        except pb.error as exc:
+            raise RobotBindingError(f"PyBullet cannot load robot URDF {robot.urdf}: {exc}") from exc
+        self._robot_joints, self._robot_links = self._index(body)
+        for name in robot.joint_names + robot.finger_joints:
+            if name not in self._robot_joints:
+                raise RobotBindingError(f"robot URDF {robot.urdf} has no joint {name!r}")
+        for name in (robot.tool_link,) + robot.gripper_links + robot.finger_links + robot.base_links:
+            if name not in self._robot_links:
+                raise RobotBindingError(f"robot URDF {robot.urdf} has no link {name!r}")
+        self._q_idx = [self._robot_joints[n].index for n in robot.joint_names]
+        self._f_idx = [self._robot_joints[n].index for n in robot.finger_joints]
+        for j in range(pb.getNumJoints(body, physicsClientId=self.client)):
+            pb.changeDynamics(body, j, linearDamping=0.0, angularDamping=0.0, physicsClientId=self.client)
+        gripper = {self._robot_links[n] for n in robot.gripper_links + robot.finger_links + (robot.tool_link,)}
+        self._gripper_idx = gripper
+        self._finger_idx = {self._robot_links[n] for n in robot.finger_links}
+        self._base_idx = {self._robot_links[n] for n in robot.base_links} | {-1}
+        return body
+
+    def _index(self, body: int) -> tuple[dict[str, JointInfo], dict[str, int]]:
+        c = self.client
+        base = pb.getBodyInfo(body, physicsClientId=c)[0].decode()
+        links = {base: -1}
+        joints = {}
+        parents = {}
+        for j in range(pb.getNumJoints(body, physicsClientId=c)):
+            ji = pb.getJointInfo(body, j, physicsClientId=c)
+            link = ji[12].decode()
+            links[link] = j
+            parents[j] = ji[16]
+        names = {v: k for k, v in links.items()}
+        for j in range(pb.getNumJoints(body, physicsClientId=c)):
+            ji = pb.getJointInfo(body, j, physicsClientId=c)
+            joints[ji[1].decode()] = JointInfo(
+                name=ji[1].decode(), type=_JOINT_TYPES.get(ji[2], "unknown"), index=j, child_link=ji[12].decode(),
+                parent_link=names[parents[j]], lower=float(ji[8]), upper=float(ji[9]), max_force=float(ji[10]),
+                max_velocity=float(ji[11]), damping=float(ji[6]), friction=float(ji[7]))
+        return joints, links
+
+    # ------------------------------------------------------------------ names
+    def scene_joint(self, name: str) -> JointInfo:
+        """The scene joint ``name``. Raises :class:`TaskSpecError` naming the file when missing."""
+        try:
+            return self._scene_joints[name]
+        except KeyError:
+            raise TaskSpecError(f"scene {self.scene_urdf} has no joint {name!r}") from None
+
+    def scene_joint_names(self) -> tuple[str, ...]:
+        return tuple(self._scene_joints)
+
+    def scene_joints(self) -> tuple[JointInfo, ...]:
+        """Every scene joint, in URDF order."""
+        return tuple(self._scene_joints.values())
+
+    def scene_link_names(self) -> tuple[str, ...]:
+        return tuple(self._scene_links)
+
+    def robot_joint(self, name: str) -> JointInfo:
+        return self._robot_joints[name]
+
+    def has_scene_link(self, name: str) -> bool:
+        return name in self._scene_links
+
+    # ------------------------------------------------------------------ state
+    def scene_joint_state(self, name: str) -> tuple[float, float]:
+        """(position, velocity) of scene joint ``name`` (rad or m, rad/s or m/s)."""
+        s = pb.getJointState(self.scene, self.scene_joint(name).index, physicsClientId=self.client)
+        return float(s[0]), float(s[1])
+
+    def reset_scene_joint(self, name: str, value: float) -> None:
+        """Set scene joint ``name`` kinematically (set-up and kinematic re-checks only, never during a task)."""
+        pb.resetJointState(self.scene, self.scene_joint(name).index, value, 0.0, physicsClientId=self.client)
+
+    def robot_q(self) -> np.ndarray:
+        """(dof,) positions of the controlled joints, in ``robot.joint_names`` order."""
+        states = pb.getJointStates(self.robot, self._q_idx, physicsClientId=self.client)
+        return np.array([s[0] for s in states], dtype=float)
+
+    def finger_q(self) -> np.ndarray:
+        """(n_fingers,) finger joint positions."""
+        states = pb.getJointStates(self.robot, self._f_idx, physicsClientId=self.client)
+        return np.array([s[0] for s in states], dtype=float)
+
+    def robot_limits(self) -> tuple[np.ndarray, np.ndarray]:
+        """(lower, upper) (dof,) URDF limits of the controlled joints (+-inf where the joint has none)."""
+        lo, hi = [], []
+        for n in self.robot_spec.joint_names:
+            ji = self._robot_joints[n]
+            unlimited = ji.type == "revolute" and ji.lower > ji.upper
+            lo.append(-np.inf if unlimited else ji.lower)
+            hi.append(np.inf if unlimited else ji.upper)
+        return np.array(lo), np.array(hi)
+
+    def robot_max_velocity(self) -> np.ndarray:
+        """(dof,) URDF velocity limits of the controlled joints (rad/s or m/s; 0 when unset)."""
+        return np.array([self._robot_joints[n].max_velocity for n in self.robot_spec.joint_names])
+
+    def reset_robot(self, q: np.ndarray, fingers_open: bool = True) -> None:
+        """Place the robot at ``q`` (dof,) at rest, fingers open or closed, and hold it there."""
+        q = np.asarray(q, dtype=float)
+        pb.resetJointStatesMultiDof(self.robot, self._q_idx, [[v] for v in q], [[0.0]] * len(q),
+                                    physicsClientId=self.client)
+        f = self.robot_spec.finger_open if fingers_open else self.robot_spec.finger_closed
+        pb.resetJointStatesMultiDof(self.robot, self._f_idx, [[v] for v in f], [[0.0]] * len(f),
+                                    physicsClientId=self.client)
+        self.command_robot(q, np.zeros_like(q))
+        self.command_fingers(fingers_open)
+
+    def command_robot(self, q: np.ndarray, qd: np.ndarray) -> None:
+        """Position-control targets for the controlled joints: ``q`` (dof,), feed-forward ``qd`` (dof,)."""
+        forces = [max(self._robot_joints[n].max_force, 1.0) for n in self.robot_spec.joint_names]
+        gain = self.config.robot_position_gain
+        pb.setJointMotorControlArray(self.robot, self._q_idx, pb.POSITION_CONTROL, targetPositions=list(map(float, q)),
+                                     targetVelocities=list(map(float, qd)), forces=forces,
+                                     positionGains=[gain] * len(q), velocityGains=[1.0] * len(q),
+                                     physicsClientId=self.client)
+
+    def command_fingers(self, open_: bool) -> None:
+        """Drive the fingers open or closed (closing past contact squeezes with ``finger_force``)."""
+        target = self.robot_spec.finger_open if open_ else self.robot_spec.finger_closed
+        n = len(target)
+        if n:
+            pb.setJointMotorControlArray(self.robot, self._f_idx, pb.POSITION_CONTROL, targetPositions=list(target),
+                                         forces=[self.robot_spec.finger_force] * n, positionGains=[0.2] * n,
+                                         physicsClientId=self.client)
+
+    def step(self, n: int = 1) -> None:
+        """Advance the simulation ``n`` fixed time steps."""
+        for _ in range(n):
+            pb.stepSimulation(physicsClientId=self.client)
+
+    # ------------------------------------------------------------------ poses and velocities
+    def scene_link_pose(self, link: str) -> np.ndarray:
+        """T_world_link (4, 4) of scene link ``link`` (its URDF link frame)."""
+        return self._link_pose(self.scene, self._scene_link_index(link))
+
+    def robot_link_pose(self, link: str) -> np.ndarray:
+        """T_world_link (4, 4) of robot link ``link`` (its URDF link frame)."""
+        return self._link_pose(self.robot, self._robot_links[link])
+
+    def _scene_link_index(self, link: str) -> int:
+        try:
+            return self._scene_links[link]
+        except KeyError:
+            raise TaskSpecError(f"scene {self.scene_urdf} has no link {link!r}") from None
+
+    def _link_pose(self, body: int, index: int) -> np.ndarray:
+        if index == -1:
+            pos, quat = pb.getBasePositionAndOrientation(body, physicsClientId=self.client)
+            # base pose is the inertial frame; correct by the local inertial offset
+            dyn = pb.getDynamicsInfo(body, -1, physicsClientId=self.client)
+            T_world_inertial = _T_from_pos_quat(pos, quat)
+            T_link_inertial = _T_from_pos_quat(dyn[3], dyn[4])
+            return T_world_inertial @ np.linalg.inv(T_link_inertial)
+        s = pb.getLinkState(body, index, computeForwardKinematics=1, physicsClientId=self.client)
+        return _T_from_pos_quat(s[4], s[5])
+
+    def scene_link_velocity(self, link: str) -> tuple[np.ndarray, np.ndarray]:
+        """(linear (3,) m/s, angular (3,) rad/s) world-frame velocity of scene link ``link``."""
+        index = self._scene_link_index(link)
+        if index == -1:
+            return np.zeros(3), np.zeros(3)
+        s = pb.getLinkState(self.scene, index, computeLinkVelocity=1, physicsClientId=self.client)
+        return np.asarray(s[6], dtype=float), np.asarray(s[7], dtype=float)
+
+    # ------------------------------------------------------------------ contacts
+    def robot_contacts(self, min_depth: float = 0.0) -> list[ContactPoint]:
+        """Contacts of robot links with scene links and with the floor (``link_b == "floor"``).
+
+        Floor contacts of ``robot.base_links`` are omitted (a mobile base stands on the floor). Only
+        points with distance <= ``-min_depth`` are returned.
+        """
+        out = []
+        c = self.client
+        rnames = {v: k for k, v in self._robot_links.items()}
+        snames = {v: k for k, v in self._scene_links.items()}
+        for cp in pb.getContactPoints(bodyA=self.robot, bodyB=self.scene, physicsClientId=c):
+            if cp[8] <= -min_depth:
+                out.append(ContactPoint(rnames[cp[3]], snames[cp[4]], float(cp[9]), float(cp[8]), tuple(cp[5])))
+        for cp in pb.getContactPoints(bodyA=self.robot, bodyB=self.floor, physicsClientId=c):
+            if cp[3] not in self._base_idx and cp[8] <= -min_depth:
+                out.append(ContactPoint(rnames[cp[3]], FLOOR, float(cp[9]), float(cp[8]), tuple(cp[5])))
+        return out
+
+    def scene_link_contacts(self, link: str, min_depth: float = 0.0) -> list[ContactPoint]:
+        """Contacts of scene link ``link`` with other scene links and the floor (not with the robot)."""
+        idx = self._scene_link_index(link)
+        snames = {v: k for k, v in self._scene_links.items()}
+        out = []
+        for cp in pb.getContactPoints(bodyA=self.scene, bodyB=self.scene, linkIndexA=idx, physicsClientId=self.client):
+            if cp[8] <= -min_depth and cp[4] != idx:
+                out.append(ContactPoint(link, snames[cp[4]], float(cp[9]), float(cp[8]), tuple(cp[5])))
+        for cp in pb.getContactPoints(bodyA=self.scene, bodyB=self.floor, linkIndexA=idx, physicsClientId=self.client):
+            if cp[8] <= -min_depth:
+                out.append(ContactPoint(link, FLOOR, float(cp[9]), float(cp[8]), tuple(cp[5])))
+        return out
+
+    def finger_contact_count(self, scene_link: str) -> int:
+        """How many finger links touch scene link ``scene_link`` now."""
+        idx = self._scene_link_index(scene_link)
+        touching = set()
+        for cp in pb.getContactPoints(bodyA=self.robot, bodyB=self.scene, linkIndexB=idx, physicsClientId=self.client):
+            if cp[3] in self._finger_idx:
+                touching.add(cp[3])
+        return len(touching)
+
+    def is_gripper_link(self, link: str) -> bool:
+        return self._robot_links.get(link) in self._gripper_idx
+
+    # ------------------------------------------------------------------ grasp attachment
+    def attach(self, scene_link: str, max_force: float) -> None:
+        """Fix the robot's tool link to ``scene_link`` at their current relative pose, force-bounded (N)."""
+        self.detach()
+        T_w_tool = self.robot_link_pose(self.robot_spec.tool_link)
+        T_w_obj = self.scene_link_pose(scene_link)
+        T_tool_obj = np.linalg.inv(T_w_tool) @ T_w_obj
+        # constraint frames are relative to the link's centre of mass (inertial frame)
+        tool_idx = self._robot_links[self.robot_spec.tool_link]
+        obj_idx = self._scene_link_index(scene_link)
+        T_tool_com = self._com_offset(self.robot, tool_idx)
+        T_obj_com = self._com_offset(self.scene, obj_idx)
+        # parent frame (in tool COM): identity at the tool; child frame (in object COM): the tool pose
+        T_comtool_frame = np.linalg.inv(T_tool_com)
+        T_comobj_frame = np.linalg.inv(T_obj_com) @ np.linalg.inv(T_tool_obj)
+        self._grasp = pb.createConstraint(
+            self.robot, tool_idx, self.scene, obj_idx, pb.JOINT_FIXED, [0, 0, 0],
+            parentFramePosition=T_comtool_frame[:3, 3].tolist(),
+            childFramePosition=T_comobj_frame[:3, 3].tolist(),
+            parentFrameOrientation=_quat_xyzw_from_R(T_comtool_frame[:3, :3]),
+            childFrameOrientation=_quat_xyzw_from_R(T_comobj_frame[:3, :3]), physicsClientId=self.client)
+        pb.changeConstraint(self._grasp, maxForce=float(max_force), physicsClientId=self.client)
+
+    def _com_offset(self, body: int, index: int) -> np.ndarray:
+        """T_link_com (4, 4): the link's inertial frame in its URDF link frame."""
+        dyn = pb.getDynamicsInfo(body, index, physicsClientId=self.client)
+        return _T_from_pos_quat(dyn[3], dyn[4])
+
+    def detach(self) -> None:
+        """Remove the grasp attachment, if any."""
+        if self._grasp is not None:
+            pb.removeConstraint(self._grasp, physicsClientId=self.client)
+            self._grasp = None
+
+    @property
+    def attached(self) -> bool:
+        return self._grasp is not None
+
+    def grasp_force(self) -> float:
+        """Norm of the force (N) the grasp attachment applied in the last step (0 when detached)."""
+        if self._grasp is None:
+            return 0.0
+        f = pb.getConstraintState(self._grasp, physicsClientId=self.client)
+        return float(np.linalg.norm(np.asarray(f[:3], dtype=float)))
+
+    # ------------------------------------------------------------------ kinematic queries
+    @contextlib.contextmanager
+    def saved_state(self):
+        """Context manager: every kinematic change inside is undone on exit (PyBullet saveState)."""
+        sid = pb.saveState(physicsClientId=self.client)
+        try:
+            yield self
+        finally:
+            pb.restoreState(stateId=sid, physicsClientId=self.client)
+            pb.removeState(sid, physicsClientId=self.client)
+
+    def collisions_at(self, q: np.ndarray, fingers_open: bool, scene_q: dict[str, float],
+                      min_depth: float) -> list[ContactPoint]:
+        """Robot-scene/floor contacts deeper than ``min_depth`` (m) with the robot at ``q`` (dof,) and the
+        scene joints at ``scene_q`` (name -> value). Moves the world: call inside :meth:`saved_state`."""
+        q = np.asarray(q, dtype=float)
+        pb.resetJointStatesMultiDof(self.robot, self._q_idx, [[v] for v in q], physicsClientId=self.client)
+        f = self.robot_spec.finger_open if fingers_open else self.robot_spec.finger_closed
+        if f:
+            pb.resetJointStatesMultiDof(self.robot, self._f_idx, [[v] for v in f], physicsClientId=self.client)
+        for name, value in scene_q.items():
+            pb.resetJointState(self.scene, self.scene_joint(name).index, float(value), physicsClientId=self.client)
+        pb.performCollisionDetection(physicsClientId=self.client)
+        return self.robot_contacts(min_depth=min_depth)
+
+    # ------------------------------------------------------------------ images
+    def render(self, target: np.ndarray, eye: np.ndarray, width: int = 320, height: int = 240,
+               fov_deg: float = 60.0) -> np.ndarray:
+        """(height, width, 3) uint8 RGB image from ``eye`` (3,) looking at ``target`` (3,), world frame, z up.
+
+        Uses the CPU ``ER_TINY_RENDERER`` (headless).
+        """
+        view = pb.computeViewMatrix(list(map(float, eye)), list(map(float, target)), [0, 0, 1])
+        proj = pb.computeProjectionMatrixFOV(fov_deg, width / height, 0.05, 20.0)
+        img = pb.getCameraImage(width, height, view, proj, renderer=pb.ER_TINY_RENDERER, physicsClientId=self.client)
+        rgba = np.asarray(img[2], dtype=np.uint8).reshape(height, width, 4)
+        return rgba[:, :, :3].copy()
