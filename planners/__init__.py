@@ -1,0 +1,26 @@
+"""planners: robot description, planning-time collision checking (pinocchio + coal), IK, base placement,
+OMPL approach and the opening motion that follows the estimated articulation.
+
+API (see docs/contracts.md, "planners <-> simcheck")::
+
+    from planners import default_robot, OpenTask, plan_open_task, PlanStatus
+    robot = default_robot()
+    plan = plan_open_task(robot, "scene.urdf", OpenTask("drawer", "cabinet3_drawer12_joint"), seed=0)
+    if plan.ok:
+        for seg in plan.segments:   # approach, grasp, open, release, retreat
+            seg.q, seg.object_q, seg.T_world_tool, seg.gripper
+
+``plan.joint_names`` are the base joints then the arm joints (the fingers are commanded through
+``Segment.gripper`` and ``RobotSpec.finger_open/finger_closed``).
+"""
+
+from planners.config import PlannerConfig
+from planners.errors import (HandleNotFoundError, PlannerError, PlannerInputError, RobotDescriptionError,
+                             SceneURDFError, TaskJointError)
+from planners.plan import default_amount, plan_open_task
+from planners.robot import RobotSpec, default_robot
+from planners.task import SEGMENT_NAMES, OpenTask, PlanResult, PlanStatus, Segment
+
+__all__ = ["RobotSpec", "default_robot", "OpenTask", "plan_open_task", "PlanResult", "PlanStatus", "Segment",
+           "SEGMENT_NAMES", "PlannerConfig", "default_amount", "PlannerError", "PlannerInputError",
+           "SceneURDFError", "TaskJointError", "HandleNotFoundError", "RobotDescriptionError"]

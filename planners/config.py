@@ -1,0 +1,68 @@
+"""Every threshold of the planners, named once (:class:`PlannerConfig`)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+__all__ = ["PlannerConfig"]
+
+
+@dataclass(frozen=True)
+class PlannerConfig:
+    """Planning parameters. Units: metres, radians, seconds.
+
+    Grasp
+        grasp_tilt: downward tilt of the approach for horizontal handle bars (STACK: ~20 deg helps).
+        pregrasp_distance: tool stand-off before the straight grasp motion, along the approach axis.
+        retreat_distance: straight retreat along the approach axis after releasing.
+        min_handle_lever: a grasp point that moves less than this per unit joint value (m/m or m/rad)
+            cannot be pulled (it sits on the hinge axis).
+    Default amounts
+        drawer_fraction: share of a prismatic joint's range opened by default.
+        door_fraction, door_max: a door opens min(door_fraction * range, door_max) by default.
+    Stand pose sampling
+        stand_distance: (min, max) horizontal distance from the handle to the base centre along the
+            outward normal; stand_lateral: half-width of the lateral offset; stand_yaw_noise: half-width of
+            the yaw noise about facing the handle; stand_candidates: poses sampled; stand_keep: stop after
+            this many poses that reach the whole opening path; stand_path_samples: path points checked
+            with the base fixed.
+        start_backoff: when no start configuration is given, the robot starts this far behind the stand
+            pose with the arm at home (falls back to the stand pose itself if that is in collision).
+    IK
+        ik_pos_tol, ik_rot_tol: convergence (m, rad); ik_restarts: random restarts per pose;
+        base_weight: relative motion weight of base joints during whole-body tracking (< 1 favours the arm).
+    Motion
+        approach_time: OMPL time limit for the approach; approach_planner: OMPL geometric planner name;
+        max_joint_step: densest joint-space spacing of returned and collision-checked samples (rad or m);
+        open_step_prismatic / open_step_revolute: task-joint spacing of opening waypoints;
+        track_pos_tol, track_rot_tol: tool pose error allowed at any opening sample;
+        constrained_time: time limit of OMPL constrained planning of the opening (0 disables it).
+    """
+
+    grasp_tilt: float = math.radians(20.0)
+    pregrasp_distance: float = 0.10
+    retreat_distance: float = 0.12
+    min_handle_lever: float = 0.05
+    drawer_fraction: float = 0.9
+    door_fraction: float = 0.9
+    door_max: float = math.radians(90.0)
+    stand_distance: tuple = (0.55, 0.95)
+    stand_lateral: float = 0.35
+    stand_yaw_noise: float = math.radians(25.0)
+    stand_candidates: int = 40
+    stand_keep: int = 3
+    stand_path_samples: int = 6
+    start_backoff: float = 0.35
+    ik_pos_tol: float = 1e-3
+    ik_rot_tol: float = 1e-2
+    ik_restarts: int = 4
+    base_weight: float = 0.3
+    approach_time: float = 3.0
+    approach_planner: str = "RRTConnect"
+    max_joint_step: float = 0.02
+    open_step_prismatic: float = 0.01
+    open_step_revolute: float = math.radians(1.5)
+    track_pos_tol: float = 3e-3
+    track_rot_tol: float = 2e-2
+    constrained_time: float = 0.0

@@ -1,0 +1,37 @@
+"""Errors raised by :mod:`planners` for inputs it cannot use.
+
+Expected planning failures (no stand pose, no path in time, ...) are never raised: they come back as a
+:class:`planners.PlanResult` with a :class:`planners.PlanStatus` and a reason. The exceptions below are
+for input that cannot be planned on at all (a broken URDF, a missing or fixed joint, a revolute joint
+named as a drawer, a moving part without a handle). Every message names the file and the joint or link;
+``simcheck``'s CLI maps :class:`PlannerInputError` to exit code 2.
+"""
+
+from __future__ import annotations
+
+__all__ = ["PlannerError", "PlannerInputError", "SceneURDFError", "TaskJointError", "HandleNotFoundError",
+           "RobotDescriptionError"]
+
+
+class PlannerError(Exception):
+    """Base class of every exception raised by :mod:`planners`."""
+
+
+class PlannerInputError(PlannerError, ValueError):
+    """The input (scene URDF, task, robot description) cannot be used; the message says why."""
+
+
+class SceneURDFError(PlannerInputError):
+    """The scene URDF is missing, unparsable, or inconsistent (names the file and the element)."""
+
+
+class TaskJointError(PlannerInputError):
+    """The task's joint is missing, fixed, or of the wrong type for the task (names file and joint)."""
+
+
+class HandleNotFoundError(PlannerInputError):
+    """No handle could be found on the part moved by the task's joint (names file and joint)."""
+
+
+class RobotDescriptionError(PlannerInputError):
+    """A :class:`planners.RobotSpec` does not match its URDF (names the URDF and the joint/frame)."""

@@ -1,0 +1,210 @@
+"""Handle discovery and grasp frames for the part a joint moves (pure numpy over the parsed URDF).
+
+Where the handle is looked for, in order:
+
+1. ``OpenTask.grasp_link`` / ``OpenTask.grasp_point`` when given;
+2. a link fixed (directly or through fixed joints) below the moving link whose name contains "handle";
+3. the only link fixed below the moving link;
+4. collision geometry of the moving link whose ``name`` attribute contains "handle".
+
+No handle raises :class:`planners.errors.HandleNotFoundError` naming the file and the joint.
+
+Grasp frame (the robot's tool frame at grasp): origin at the handle bar's centre, z (approach) against
+the part's outward direction (the direction the grasp point moves when the joint opens), x along the
+bar, so the fingers (closing along y) close across the bar's thin dimension. Horizontal bars get a
+downward approach tilt (:attr:`PlannerConfig.grasp_tilt`). Two candidates are returned, the second
+turned half a turn about the approach axis, because either finger may come from above.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+
+from planners.config import PlannerConfig
+from planners.errors import HandleNotFoundError
+from planners.scene_urdf import Geometry, SceneDescription, _rotation_about
+from planners.task import OpenTask
+
+__all__ = ["HandleGrasp", "find_handle", "outward_direction"]
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class HandleGrasp:
+    """Where and how to grasp the part moved by a joint.
+
+    Attributes
+    ----------
+    moving_link : link moved by the joint.
+    handle_geoms : frozenset of (link, collision index) the gripper may touch.
+    T_link_grasps : tuple of (4, 4) candidate grasp frames in the moving link's frame.
+    bar_width : float, metres, extent of the bar across the finger closing direction (0 if unknown).
+    source : how the handle was found ("grasp_link", "grasp_point", "handle link", "fixed child",
+        "named geometry").
+    """
+
+    moving_link: str
+    handle_geoms: frozenset
+    T_link_grasps: tuple
+    bar_width: float
+    source: str
+
+
+def _fixed_descendants(scene: SceneDescription, link: str) -> list[str]:
+    out, stack = [], [link]
+    while stack:
+        cur = stack.pop()
+        for j in scene.child_joints(cur):
+            if j.type == "fixed":
+                out.append(j.child)
+                stack.append(j.child)
+    return out
+
+
+def outward_direction(scene: SceneDescription, joint: str, point_world: np.ndarray, values: dict,
+                      delta: float = 1e-4) -> np.ndarray:
+    """``(3,)`` unnormalised velocity (world, per unit joint value) of a point rigidly attached to the joint's
+    child, at the joint values ``values``; zero when the point lies on a hinge axis."""
+    j = scene.joints[joint]
+    v0 = dict(values)
+    s = float(v0.get(joint, 0.0))
+    T0 = scene.T_world_link(j.child, v0)
+    v0[joint] = s + delta
+    T1 = scene.T_world_link(j.child, v0)
+    p_link = np.linalg.solve(T0, np.append(point_world, 1.0))
+    return (T1 @ p_link)[:3] / delta - point_world / delta
+
+
+def _bar(geom: Geometry) -> tuple[np.ndarray | None, np.ndarray, float]:
+    """(long axis in geom frame or None, (3,) centre in geom frame, thickness) of a handle geometry."""
+    if geom.kind == "box":
+        size = np.asarray(geom.size)
+        i = int(np.argmax(size))
+        axis = np.eye(3)[i] if size[i] > 1.5 * np.sort(size)[1] else None
+        return axis, np.zeros(3), float(np.sort(size)[1] if axis is not None else np.min(size))
+    if geom.kind == "cylinder":
+        r, _, ln = geom.size
+        return (np.array([0.0, 0.0, 1.0]) if ln > 2 * r else None), np.zeros(3), 2 * r
+    if geom.kind == "sphere":
+        return None, np.zeros(3), 2 * geom.size[0]
+    try:   # mesh: its bounding box
+        import trimesh
+        mesh = trimesh.load(geom.mesh, force="mesh")
+        lo, hi = mesh.bounds * np.asarray(geom.size)
+    except Exception:   # unreadable mesh: grasp its origin
+        log.warning("handle mesh %s could not be read; grasping the geometry origin", geom.mesh)
+        return None, np.zeros(3), 0.0
+    size = hi - lo
+    i = int(np.argmax(size))
+    axis = np.eye(3)[i] if size[i] > 1.5 * np.sort(size)[1] else None
+    return axis, (lo + hi) / 2, float(np.sort(size)[1])
+
+
+def _extent(geom: Geometry) -> float:
+    return float(max(geom.size)) if geom.kind != "mesh" else 1.0
+
+
+def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: PlannerConfig) -> HandleGrasp:
+    """Find the handle of the part moved by ``task.joint`` with the scene at joint ``values``."""
+    j = scene.joints[task.joint]
+    moving = j.child
+    where = f"{scene.path}: joint {task.joint!r}"
+    fixed_below = _fixed_descendants(scene, moving)
+    T_world_moving = scene.T_world_link(moving, values)
+
+    def geoms_of(link):
+        T = np.linalg.solve(T_world_moving, scene.T_world_link(link, values))
+        return [(link, g, T @ g.T_link_geom) for g in scene.links[link].geometries]
+
+    cands, source = [], ""
+    if task.grasp_link is not None:
+        if task.grasp_link not in scene.links:
+            raise HandleNotFoundError(f"{where}: grasp_link {task.grasp_link!r} is not a link of the scene")
+        if task.grasp_link != moving and task.grasp_link not in fixed_below:
+            raise HandleNotFoundError(f"{where}: grasp_link {task.grasp_link!r} is not rigidly attached to "
+                                      f"the moving link {moving!r}")
+        cands, source = geoms_of(task.grasp_link), "grasp_link"
+        named = [c for c in cands if "handle" in c[1].name.lower()]
+        cands = named or cands
+    else:
+        named_links = [ln for ln in fixed_below if "handle" in ln.lower()]
+        if named_links:
+            cands, source = [c for ln in named_links[:1] for c in geoms_of(ln)], "handle link"
+        elif len(fixed_below) == 1:
+            cands, source = geoms_of(fixed_below[0]), "fixed child"
+        else:
+            cands = [c for ln in [moving] + fixed_below for c in geoms_of(ln) if "handle" in c[1].name.lower()]
+            source = "named geometry"
+    cands = [c for c in cands if c[1] is not None]
+    if task.grasp_point is not None:
+        p_world = np.asarray(task.grasp_point, dtype=float)
+        p_link = np.linalg.solve(T_world_moving, np.append(p_world, 1.0))[:3]
+        if not cands:   # the geometries the point is on or near may be touched
+            near = []
+            for ln in [moving] + fixed_below:
+                for c in geoms_of(ln):
+                    d = np.linalg.norm(c[2][:3, 3] - p_link) - 0.5 * _extent(c[1]) * np.sqrt(3)
+                    if d < 0.05:
+                        near.append(c)
+            cands = near
+        axis, width = None, 0.0
+        if cands:
+            best = max(cands, key=lambda c: _extent(c[1]))
+            a, _, width = _bar(best[1])
+            axis = None if a is None else best[2][:3, :3] @ a
+        source = "grasp_point"
+    else:
+        if not cands:
+            raise HandleNotFoundError(
+                f"{where}: no handle found on moving link {moving!r} (no fixed child link named '*handle*', "
+                f"no single fixed child, no collision geometry named '*handle*'); give OpenTask.grasp_point "
+                f"or grasp_link")
+        best = max(cands, key=lambda c: _extent(c[1]))
+        a, centre, width = _bar(best[1])
+        p_link = (best[2] @ np.append(centre, 1.0))[:3]
+        axis = None if a is None else best[2][:3, :3] @ a
+    p_world = (T_world_moving @ np.append(p_link, 1.0))[:3]
+    v = outward_direction(scene, task.joint, p_world, values)
+    if np.linalg.norm(v) < cfg.min_handle_lever * (1.0 if j.type == "prismatic" else 1.0):
+        raise HandleNotFoundError(f"{where}: the handle at {np.round(p_world, 3).tolist()} does not move when "
+                                  f"the joint opens (it lies on the hinge axis)")
+    n = v / np.linalg.norm(v)
+    axis_world = None if axis is None else T_world_moving[:3, :3] @ axis
+    frames = _grasp_frames(p_world, n, axis_world, task.kind, cfg.grasp_tilt)
+    T_link = tuple(np.linalg.solve(T_world_moving, T) for T in frames)
+    geoms = frozenset((ln, g.index) for ln, g, _ in cands)
+    log.debug("%s: handle via %s at %s, outward %s", where, source, p_world.round(3), n.round(3))
+    return HandleGrasp(moving, geoms, T_link, width, source)
+
+
+def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kind: str, tilt: float) -> list:
+    """Two ``(4, 4)`` world grasp frames at ``p`` approaching along ``-n`` with x along the bar."""
+    z = -n
+    ez = np.array([0.0, 0.0, 1.0])
+    x = None
+    if bar_axis is not None:
+        x = bar_axis - (bar_axis @ z) * z
+        if np.linalg.norm(x) < 0.3:
+            x = None
+    if x is None:   # knob or unknown: vertical fingers for doors, horizontal closing for drawers
+        x = ez - (ez @ z) * z if kind == "door" else np.cross(ez, z)
+        if np.linalg.norm(x) < 1e-6:
+            x = np.cross(np.array([1.0, 0.0, 0.0]), z)
+    x = x / np.linalg.norm(x)
+    R = np.column_stack([x, np.cross(z, x), z])
+    if abs(x @ ez) < 0.5 and tilt > 0:   # horizontal bar: tilt the approach downward about the bar
+        Rt = _rotation_about(x, tilt)
+        if (Rt @ z) @ ez > z @ ez:
+            Rt = _rotation_about(x, -tilt)
+        R = Rt @ R
+    out = []
+    for flip in (False, True):
+        T = np.eye(4)
+        T[:3, :3] = R @ np.diag([-1.0, -1.0, 1.0]) if flip else R
+        T[:3, 3] = p
+        out.append(T)
+    return out

@@ -1,0 +1,97 @@
+"""Inverse kinematics by damped least squares with selectable columns and seeded restarts (pure numpy).
+
+The kinematics enter as a callable ``pose_jacobian(q) -> (T_world_tool (4, 4), J (6, dof))`` with ``J``
+world-aligned at the tool origin (rows: linear velocity, angular velocity), e.g.
+:meth:`planners.pin_world.RobotKinematics.tool_pose_jacobian`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+__all__ = ["IKResult", "pose_error", "solve_ik"]
+
+
+@dataclass(frozen=True)
+class IKResult:
+    """``success``; ``q (dof,)`` the best configuration found; its errors (m, rad); iterations used."""
+
+    success: bool
+    q: np.ndarray
+    pos_error: float
+    rot_error: float
+    iterations: int
+
+
+def pose_error(T: np.ndarray, T_target: np.ndarray) -> np.ndarray:
+    """``(6,)`` error (world frame): target minus current position, then the rotation vector of R_t R^T."""
+    e = np.empty(6)
+    e[:3] = T_target[:3, 3] - T[:3, 3]
+    e[3:] = Rotation.from_matrix(T_target[:3, :3] @ T[:3, :3].T).as_rotvec()
+    return e
+
+
+def solve_ik(pose_jacobian, T_target: np.ndarray, q_seed: np.ndarray, lower: np.ndarray, upper: np.ndarray,
+             active: np.ndarray | None = None, weights: np.ndarray | None = None, *, pos_tol: float = 1e-3,
+             rot_tol: float = 1e-2, damping: float = 0.05, max_iter: int = 80, max_step: float = 0.3,
+             restarts: int = 0, rng: np.random.Generator | None = None, restart_span: np.ndarray | None = None,
+             accept=None) -> IKResult:
+    """Move the tool to ``T_target (4, 4)`` starting from ``q_seed (dof,)``.
+
+    Parameters
+    ----------
+    active : (dof,) bool
+        Columns that may move (default all); inactive joints keep their seed value.
+    weights : (dof,) float
+        Per-joint motion weights (larger moves more; e.g. small on the base to prefer arm motion).
+    restarts : int
+        Extra attempts from seeds drawn uniformly within the limits (active columns only; with
+        ``restart_span`` (dof,) the draw is ``q_seed +- span`` clipped to the limits instead).
+    accept : callable ``q -> bool`` or None
+        Extra test a converged solution must pass (e.g. collision-free); otherwise the next restart runs.
+    """
+    dof = len(q_seed)
+    act = np.ones(dof, bool) if active is None else np.asarray(active, bool)
+    w = np.ones(dof) if weights is None else np.asarray(weights, float)
+    w = np.where(act, w, 0.0)
+    best = None
+    for attempt in range(restarts + 1):
+        if attempt == 0:
+            q = np.array(q_seed, dtype=float)
+        else:
+            if rng is None:
+                rng = np.random.default_rng(0)
+            if restart_span is None:
+                draw = rng.uniform(lower, upper)
+            else:
+                draw = np.clip(q_seed + rng.uniform(-1, 1, dof) * restart_span, lower, upper)
+            q = np.where(act, draw, q_seed)
+        res = _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping, max_iter, max_step)
+        if res.success and (accept is None or accept(res.q)):
+            return res
+        if best is None or res.pos_error + 0.1 * res.rot_error < best.pos_error + 0.1 * best.rot_error:
+            best = IKResult(False, res.q, res.pos_error, res.rot_error, res.iterations)
+    return best
+
+
+def _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping, max_iter, max_step) -> IKResult:
+    W = np.sqrt(w)
+    for it in range(1, max_iter + 1):
+        T, J = pose_jacobian(q)
+        e = pose_error(T, T_target)
+        pe, re = float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:]))
+        if pe < pos_tol and re < rot_tol:
+            return IKResult(True, q, pe, re, it)
+        Jw = J * W
+        dq = W * (Jw.T @ np.linalg.solve(Jw @ Jw.T + damping ** 2 * np.eye(6), e))
+        n = float(np.max(np.abs(dq)))
+        if n > max_step:
+            dq *= max_step / n
+        q = np.clip(q + dq, lower, upper)
+    T, _ = pose_jacobian(q)
+    e = pose_error(T, T_target)
+    pe, re = float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:]))
+    return IKResult(pe < pos_tol and re < rot_tol, q, pe, re, max_iter)

@@ -1,0 +1,249 @@
+"""``plan_open_task``: validate the task, find the handle and a stand pose, plan approach, grasp, opening,
+release and retreat. Expected failures come back as a :class:`PlanResult` with a status and a reason.
+
+Opening method: IK tracking of the estimated handle path (a straight pull along the prismatic axis, an
+arc about the revolute hinge) with the whole body (base + arm, base motion down-weighted), densely
+interpolated and collision-checked at every sample (see :mod:`planners.motion`).
+"""
+
+from __future__ import annotations
+
+import functools
+import logging
+import math
+import time
+
+import numpy as np
+
+from planners.config import PlannerConfig
+from planners.errors import TaskJointError
+from planners.handle import find_handle
+from planners.motion import densify, first_invalid, track_poses
+from planners.ompl_adapter import plan_joint_path
+from planners.pin_world import PlanningWorld, RobotKinematics
+from planners.robot import RobotSpec
+from planners.scene_urdf import SceneDescription, read_scene_urdf
+from planners.stand import StandPose, find_stand_poses
+from planners.task import OpenTask, PlanResult, PlanStatus, Segment
+
+__all__ = ["plan_open_task", "default_amount", "robot_kinematics"]
+
+log = logging.getLogger(__name__)
+
+
+@functools.lru_cache(maxsize=4)
+def robot_kinematics(spec: RobotSpec) -> RobotKinematics:
+    """The (cached) pinocchio model of ``spec``: loading and convexifying meshes takes ~0.2 s."""
+    return RobotKinematics(spec)
+
+
+def default_amount(kind: str, lower: float, upper: float, cfg: PlannerConfig) -> float:
+    """Default opening: drawers ``drawer_fraction`` of the range; doors min(``door_fraction`` of it, ``door_max``)."""
+    span = upper - lower
+    return cfg.drawer_fraction * span if kind == "drawer" else min(cfg.door_fraction * span, cfg.door_max)
+
+
+def _validate(scene: SceneDescription, task: OpenTask, s0: float, cfg: PlannerConfig) -> float:
+    """Check the task against the scene; return the amount to open (m or rad)."""
+    where = f"{scene.path}: joint {task.joint!r}"
+    if task.joint not in scene.joints:
+        movable = sorted(j.name for j in scene.joints.values() if j.movable)
+        raise TaskJointError(f"{where} does not exist (movable joints: {', '.join(movable[:12]) or 'none'})")
+    j = scene.joints[task.joint]
+    want = "prismatic" if task.kind == "drawer" else "revolute"
+    if j.type == "fixed":
+        raise TaskJointError(f"{where} is fixed: nothing to open as a {task.kind}")
+    if j.type != want and not (task.kind == "door" and j.type == "continuous"):
+        raise TaskJointError(f"{where} is {j.type}, but a {task.kind} needs a {want} joint")
+    lower, upper = j.lower, j.upper
+    if not math.isfinite(upper) or not math.isfinite(lower):
+        lower, upper = s0, s0 + (cfg.door_max / cfg.door_fraction)
+    amount = default_amount(task.kind, lower, upper, cfg) if task.amount is None else float(task.amount)
+    if task.amount is None:
+        amount = min(amount, upper - s0)
+    if not amount > 0:
+        raise TaskJointError(f"{where}: nothing to open (amount {amount:.4g} from current value {s0:.4g}, "
+                             f"upper limit {upper:.4g})")
+    if s0 + amount > upper + 1e-9:
+        raise TaskJointError(f"{where}: amount {amount:.4g} from {s0:.4g} exceeds the upper limit {upper:.4g}")
+    return amount
+
+
+def _translate_tool(T: np.ndarray, dz: float) -> np.ndarray:
+    """``T`` moved by ``dz`` metres along its own z (approach) axis."""
+    out = T.copy()
+    out[:3, 3] += dz * T[:3, 2]
+    return out
+
+
+def _fk_poses(kin: RobotKinematics, q: np.ndarray) -> np.ndarray:
+    return np.array([kin.tool_pose(x) for x in q])
+
+
+def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, *, start=None,
+                   scene_state: dict | None = None, config: PlannerConfig | None = None) -> PlanResult:
+    """Plan opening ``task.joint`` of the scene in ``scene_urdf`` with ``robot``.
+
+    Parameters
+    ----------
+    robot : the robot description.
+    scene_urdf : path of the scene URDF (the estimate to plan on).
+    task : what to open; ``amount`` is counted from the joint's current value.
+    seed : every random choice (stand sampling, IK restarts, OMPL) derives from it.
+    start : (dof,) robot configuration in ``robot.joint_names`` order, or None: the robot starts
+        ``config.start_backoff`` behind the chosen stand pose with the arm at home.
+    scene_state : {joint name: value} of the scene's joints when the plan starts (default all 0).
+    config : planner parameters.
+
+    Raises
+    ------
+    planners.errors.PlannerInputError (SceneURDFError, TaskJointError, HandleNotFoundError) for input that
+    cannot be planned on. Every other outcome is a PlanResult.
+    """
+    cfg = config or PlannerConfig()
+    t_all = time.perf_counter()
+    timings: dict[str, float] = {}
+    scene = read_scene_urdf(scene_urdf)
+    state = dict(scene_state or {})
+    s0 = float(state.get(task.joint, 0.0))
+    amount = _validate(scene, task, s0, cfg)
+    kin = robot_kinematics(robot)
+    handle = find_handle(scene, task, state, cfg)
+    world = PlanningWorld(kin, scene, task.joint, set(handle.handle_geoms), state)
+    rng = np.random.default_rng(seed)
+    base = dict(task=task, joint_names=robot.joint_names, amount=amount, start_object_q=s0,
+                moving_link=handle.moving_link, seed=seed, timings=timings)
+
+    def result(status, reason, **kw) -> PlanResult:
+        timings["total"] = time.perf_counter() - t_all
+        log.info("%s %s: %s (%s)", task.kind, task.joint, status.name, reason)
+        return PlanResult(status, reason, collision_checks=world.checks, **base, **kw)
+
+    j = scene.joints[task.joint]
+    step = cfg.open_step_prismatic if j.type == "prismatic" else cfg.open_step_revolute
+    s_path = s0 + amount * np.linspace(0.0, 1.0, max(2, int(math.ceil(amount / step)) + 1))
+    T_moving = np.array([world.moving_link_pose(s) for s in s_path])
+    T_paths = [T_moving @ T for T in handle.T_link_grasps]
+
+    t = time.perf_counter()
+    stands, summary = find_stand_poses(kin, world, T_paths, s_path, cfg, rng)
+    timings["stand"] = time.perf_counter() - t
+    if not stands:
+        return result(PlanStatus.NO_STAND_POSE, f"{task.kind} {task.joint!r}: no stand pose from which the "
+                      f"handle can be grasped collision-free ({summary})")
+    arm = np.zeros(robot.dof, bool)
+    arm[3:] = True
+    whole = np.ones(robot.dof, bool)
+    weights = np.ones(robot.dof)
+    weights[:3] = cfg.base_weight
+    failures = []
+    for stand in stands[:cfg.stand_keep]:
+        out = _plan_from_stand(kin, world, task, stand, T_paths[stand.grasp_index], s_path, handle, cfg, rng,
+                               arm, whole, weights, start, timings, seed)
+        if isinstance(out, tuple):
+            failures.append(out)
+            if out[0] in (PlanStatus.START_IN_COLLISION, PlanStatus.NO_PATH):
+                break
+            continue
+        segments = out
+        T_link_grasp = handle.T_link_grasps[stand.grasp_index]
+        return result(PlanStatus.OK, f"{task.kind} {task.joint!r}: planned opening by {amount:.3f} "
+                      f"({'m' if j.type == 'prismatic' else 'rad'}) from stand {np.round(stand.base, 3).tolist()}",
+                      segments=tuple(segments), T_world_base_stand=stand.T_world_base, T_link_grasp=T_link_grasp,
+                      method="ik_tracking")
+    status, reason = failures[0] if len(failures) == 1 else failures[-1]
+    return result(status, f"{task.kind} {task.joint!r}: {reason} ({summary}; tried {len(failures)} stand poses)",
+                  T_world_base_stand=stands[0].T_world_base)
+
+
+def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle, cfg, rng, arm, whole, weights,
+                     start, timings, seed):
+    """Segments for one stand pose, or ``(PlanStatus, reason)``."""
+    spec = kin.spec
+    lower, upper = world.robot.lower, world.robot.upper
+    s0, s1 = float(s_path[0]), float(s_path[-1])
+    q_grasp = stand.q_grasp
+    # Pre-grasp: backed off along the approach axis, gripper open, no contact allowed.
+    t = time.perf_counter()
+    T_pre = _translate_tool(T_path[0], -cfg.pregrasp_distance)
+    from planners.ik import solve_ik
+    r = solve_ik(kin.tool_pose_jacobian, T_pre, q_grasp, lower, upper, arm, None, pos_tol=cfg.ik_pos_tol,
+                 rot_tol=cfg.ik_rot_tol, restarts=cfg.ik_restarts, rng=rng, restart_span=np.full(spec.dof, 0.4),
+                 accept=lambda q: not world.in_collision(q, s0, False))
+    if not r.success:
+        return PlanStatus.IK_FAILED, "no collision-free pre-grasp configuration"
+    q_pre = r.q
+    # Grasp: straight line from the pre-grasp to the grasp.
+    n = max(2, int(math.ceil(cfg.pregrasp_distance / 0.01)) + 1)
+    T_line = np.array([_translate_tool(T_path[0], -cfg.pregrasp_distance * (1 - u)) for u in np.linspace(0, 1, n)])
+    g = track_poses(kin, world, T_line, np.full(n, s0), q_pre, arm, None, cfg, True)
+    timings["grasp"] = time.perf_counter() - t
+    if not g.success:
+        return PlanStatus.IK_FAILED, f"straight grasp motion failed: {g.reason}"
+    # Open: follow the estimated handle path with the whole body.
+    t = time.perf_counter()
+    o = track_poses(kin, world, T_path, s_path, g.q[-1], whole, weights, cfg, True)
+    timings["open"] = time.perf_counter() - t
+    if not o.success:
+        return PlanStatus.OPENING_FAILED, f"opening motion failed at {o.s[-1] if len(o.s) else s0:.3f}: {o.reason}"
+    # Retreat: back off along the approach axis with the gripper open, at the final joint value.
+    t = time.perf_counter()
+    T_end = kin.tool_pose(o.q[-1])
+    n = max(2, int(math.ceil(cfg.retreat_distance / 0.01)) + 1)
+    T_back = np.array([_translate_tool(T_end, -cfg.retreat_distance * u) for u in np.linspace(0, 1, n)])
+    rt = track_poses(kin, world, T_back, np.full(n, s1), o.q[-1], whole, weights, cfg, False)
+    timings["retreat"] = time.perf_counter() - t
+    if not rt.success:
+        return PlanStatus.IK_FAILED, f"retreat after release failed: {rt.reason}"
+    # Approach: OMPL from the start configuration to the pre-grasp.
+    t = time.perf_counter()
+    q_start = _start_configuration(world, spec, stand, start, cfg, s0)
+    if isinstance(q_start, tuple):
+        return q_start
+    if not world.within_limits(q_pre) or world.in_collision(q_pre, s0, False):
+        return PlanStatus.GOAL_IN_COLLISION, "pre-grasp configuration in collision"
+    lo, hi = lower.copy(), upper.copy()
+    span = np.array([1.0, 1.0, 1.0])
+    lo[:3] = np.maximum(lower[:3], np.minimum(q_start[:3], q_pre[:3]) - span)
+    hi[:3] = np.minimum(upper[:3], np.maximum(q_start[:3], q_pre[:3]) + span)
+
+    def valid(q) -> bool:
+        return not world.in_collision(q, s0, False)
+
+    mr = plan_joint_path(q_start, q_pre, lo, hi, valid, time_limit=cfg.approach_time, seed=seed,
+                         planner=cfg.approach_planner, resolution=0.004)
+    timings["approach"] = time.perf_counter() - t
+    if not mr.success:
+        return PlanStatus.NO_PATH, f"approach: {mr.reason}"
+    qa, sa = densify(mr.path, np.full(len(mr.path), s0), cfg.max_joint_step)
+    bad = first_invalid(world, qa, sa, False)
+    if bad >= 0:
+        return PlanStatus.NO_PATH, f"approach path collides at sample {bad} when re-checked densely"
+    T_open = np.array([world.moving_link_pose(s) for s in o.s]) @ handle.T_link_grasps[stand.grasp_index]
+    q_rel = np.repeat(o.q[-1:], 2, axis=0)
+    return [
+        Segment("approach", qa, sa, _fk_poses(kin, qa), "open"),
+        Segment("grasp", g.q, g.s, _fk_poses(kin, g.q), "open"),
+        Segment("open", o.q, o.s, T_open, "closed"),
+        Segment("release", q_rel, np.full(2, s1), _fk_poses(kin, q_rel), "open"),
+        Segment("retreat", rt.q, rt.s, _fk_poses(kin, rt.q), "open"),
+    ]
+
+
+def _start_configuration(world, spec, stand: StandPose, start, cfg, s0):
+    """The robot's start: given, or behind the stand pose with the arm at home."""
+    if start is not None:
+        q = np.asarray(start, float).reshape(-1)
+        if q.shape != (spec.dof,):
+            raise ValueError(f"start must have {spec.dof} values ({spec.joint_names}), got {q.shape}")
+        if not world.within_limits(q):
+            return PlanStatus.START_IN_COLLISION, "start configuration outside the robot's joint limits"
+        if world.in_collision(q, s0, False):
+            return PlanStatus.START_IN_COLLISION, "start configuration in collision"
+        return q
+    x, y, yaw = stand.base
+    for back in (cfg.start_backoff, cfg.start_backoff / 2, 0.0):
+        q = spec.q_with_base(spec.home_q, x - back * math.cos(yaw), y - back * math.sin(yaw), yaw)
+        if not world.in_collision(q, s0, False):
+            return q
+    return PlanStatus.START_IN_COLLISION, "no collision-free start behind the stand pose (arm at home)"

@@ -1,0 +1,223 @@
+"""The robot description: one URDF (loaded by PyBullet and pinocchio alike) plus a small :class:`RobotSpec`.
+
+The default robot is a planar mobile base (prismatic x, prismatic y, revolute yaw, then a box body) that
+carries the 7-DOF Franka Panda with its parallel gripper from ``pybullet_data``.
+
+Mesh paths: the Panda meshes ship with the pip-installed ``pybullet_data`` package, so nothing is copied
+into git. At first use :func:`default_robot` writes the combined URDF into a cache directory
+(``$PARTSCENE_CACHE``, else ``$XDG_CACHE_HOME/partscene``, else ``~/.cache/partscene``) with the
+``package://meshes/...`` references of ``panda.urdf`` rewritten to absolute paths inside the installed
+``pybullet_data``. Absolute paths load unchanged in PyBullet, pinocchio and yourdfpy, so no consumer needs
+to know about package directories. The file name carries a hash of its content, so a changed description
+or a moved ``pybullet_data`` gives a new file instead of a stale one; it is written atomically.
+
+Robots are pluggable: any URDF whose root is the world, with the base joints, arm joints, finger joints
+and a tool frame named in a :class:`RobotSpec`, is planned for without planner changes.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import re
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["RobotSpec", "default_robot", "robot_cache_dir", "PANDA_HOME"]
+
+#: Panda arm home configuration (rad): elbow up, hand pointing down in front of the base.
+PANDA_HOME = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
+
+
+@dataclass(frozen=True)
+class RobotSpec:
+    """What the planners need to know about a robot besides its URDF.
+
+    Attributes
+    ----------
+    urdf : Path
+        The robot URDF. Its root link is the world; the base joints move the base in the plane.
+    base_joints : tuple of str
+        Planar base joints in the order (x, y, yaw): prismatic x, prismatic y (metres), revolute yaw (rad).
+    arm_joints : tuple of str
+        Arm joints, base to tip.
+    finger_joints : tuple of str
+        Gripper finger joints (prismatic, metres per finger; 0 = closed).
+    tool_frame : str
+        A frame between the fingertips; planned grasp poses are poses of this frame. Its z axis is the
+        approach direction, its y axis the finger closing direction.
+    base_link : str
+        The body link of the base (the stand pose is the pose of this link).
+    gripper_links : tuple of str
+        Links allowed to touch the handle while grasping and opening.
+    home : tuple of float
+        Home configuration of ``base_joints + arm_joints`` (the order of ``joint_names``).
+    ignore_pairs : tuple of (str, str)
+        Link pairs never checked for self-collision (besides parent-child pairs, always skipped).
+    finger_open, finger_closed : float
+        Finger joint value (metres, per finger) with the gripper open / closed.
+    max_finger_force : float
+        Newtons per finger that an executor may apply to close the gripper.
+    """
+
+    urdf: Path
+    base_joints: tuple[str, ...]
+    arm_joints: tuple[str, ...]
+    finger_joints: tuple[str, ...]
+    tool_frame: str
+    base_link: str
+    gripper_links: tuple[str, ...]
+    home: tuple[float, ...]
+    ignore_pairs: tuple[tuple[str, str], ...] = field(default=())
+    finger_open: float = 0.04
+    finger_closed: float = 0.0
+    max_finger_force: float = 20.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "urdf", Path(self.urdf))
+        if len(self.base_joints) != 3:
+            raise ValueError(f"RobotSpec({self.urdf}): base_joints must be (x, y, yaw), got {self.base_joints}")
+        if len(self.home) != len(self.joint_names):
+            raise ValueError(f"RobotSpec({self.urdf}): home has {len(self.home)} values for "
+                             f"{len(self.joint_names)} joints {self.joint_names}")
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        """Planned joints, the columns of every ``q`` array: ``base_joints + arm_joints``."""
+        return tuple(self.base_joints) + tuple(self.arm_joints)
+
+    @property
+    def dof(self) -> int:
+        """Number of planned joints."""
+        return len(self.joint_names)
+
+    @property
+    def home_q(self) -> np.ndarray:
+        """``(dof,) float`` home configuration."""
+        return np.asarray(self.home, dtype=float)
+
+    def q_with_base(self, q: np.ndarray, x: float, y: float, yaw: float) -> np.ndarray:
+        """Copy of ``q (dof,)`` with the base joints set to ``(x, y, yaw)``."""
+        out = np.array(q, dtype=float)
+        out[:3] = (x, y, yaw)
+        return out
+
+
+# ------------------------------------------------------------------------------------------------------
+# The default mobile Panda
+# ------------------------------------------------------------------------------------------------------
+
+#: Base box (metres): length along the base x (forward), width, height; its bottom clears the floor.
+BASE_SIZE = (0.60, 0.50, 0.41)
+BASE_CLEARANCE = 0.03
+#: Where the Panda's link0 sits on the base (metres, base frame): forward of centre, on top of the box.
+ARM_MOUNT_XYZ = (0.16, 0.0, BASE_CLEARANCE + BASE_SIZE[2] + 0.01)
+
+_BASE_TEMPLATE = """<?xml version="1.0" ?>
+<!-- partscene mobile Panda: planar base (x, y, yaw) + Franka Panda from pybullet_data.
+     Generated by planners.robot; mesh paths are absolute into the installed pybullet_data. -->
+<robot name="mobile_panda">
+  <link name="world"/>
+  <link name="base_x_link">
+    <inertial><origin xyz="0 0 0"/><mass value="1.0"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+  </link>
+  <link name="base_y_link">
+    <inertial><origin xyz="0 0 0"/><mass value="1.0"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+  </link>
+  <link name="base_link">
+    <inertial><origin xyz="0 0 {bz}"/><mass value="30.0"/><inertia ixx="1.0" ixy="0" ixz="0" iyy="1.2" iyz="0" izz="1.5"/></inertial>
+    <visual><origin xyz="0 0 {bz}"/><geometry><box size="{sx} {sy} {sz}"/></geometry>
+      <material name="base_grey"><color rgba="0.35 0.35 0.38 1"/></material></visual>
+    <collision><origin xyz="0 0 {bz}"/><geometry><box size="{sx} {sy} {sz}"/></geometry></collision>
+  </link>
+  <joint name="base_x" type="prismatic">
+    <parent link="world"/><child link="base_x_link"/><origin xyz="0 0 0"/><axis xyz="1 0 0"/>
+    <limit lower="-50" upper="50" effort="2000" velocity="1.0"/><dynamics damping="0" friction="0"/>
+  </joint>
+  <joint name="base_y" type="prismatic">
+    <parent link="base_x_link"/><child link="base_y_link"/><origin xyz="0 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-50" upper="50" effort="2000" velocity="1.0"/><dynamics damping="0" friction="0"/>
+  </joint>
+  <joint name="base_yaw" type="revolute">
+    <parent link="base_y_link"/><child link="base_link"/><origin xyz="0 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-6.2832" upper="6.2832" effort="1000" velocity="1.5"/><dynamics damping="0" friction="0"/>
+  </joint>
+  <joint name="base_to_panda" type="fixed">
+    <parent link="base_link"/><child link="panda_link0"/><origin xyz="{mx} {my} {mz}" rpy="0 0 0"/>
+  </joint>
+{panda}
+</robot>
+"""
+
+
+def robot_cache_dir() -> Path:
+    """Directory where generated robot URDFs are cached (created on demand)."""
+    env = os.environ.get("PARTSCENE_CACHE")
+    if env:
+        root = Path(env)
+    else:
+        root = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "partscene"
+    return root / "robots"
+
+
+def _panda_body_xml() -> str:
+    """The links and joints of pybullet_data's ``panda.urdf`` with absolute mesh paths."""
+    import pybullet_data  # a data-only package; importing it does not start pybullet
+
+    panda_dir = Path(pybullet_data.getDataPath()) / "franka_panda"
+    text = (panda_dir / "panda.urdf").read_text()
+    body = text[text.index(">", text.index("<robot")) + 1: text.rindex("</robot>")]
+    body = body.replace("package://meshes/", f"{(panda_dir / 'meshes').as_posix()}/")
+    # pybullet_data's panda_link8 has zero mass but a non-zero inertia; give it an explicit tiny mass so
+    # pinocchio and pybullet agree and no loader warns.
+    body = re.sub(r'(<link name="panda_link8">\s*<inertial>.*?)<mass value="0.0"/>',
+                  r'\1<mass value="0.001"/>', body, flags=re.S)
+    body = re.sub(r'(<link name="panda_grasptarget">\s*<inertial>.*?)<mass value="0.0"/>',
+                  r'\1<mass value="0.001"/>', body, flags=re.S)
+    return body
+
+
+def _write_atomic(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def default_robot() -> RobotSpec:
+    """The default mobile manipulator: planar base + Franka Panda + parallel gripper.
+
+    Writes the combined URDF into :func:`robot_cache_dir` at first use (see the module docstring).
+    """
+    sx, sy, sz = BASE_SIZE
+    text = _BASE_TEMPLATE.format(sx=sx, sy=sy, sz=sz, bz=BASE_CLEARANCE + sz / 2,
+                                 mx=ARM_MOUNT_XYZ[0], my=ARM_MOUNT_XYZ[1], mz=ARM_MOUNT_XYZ[2],
+                                 panda=_panda_body_xml())
+    digest = hashlib.sha1(text.encode()).hexdigest()[:12]
+    path = robot_cache_dir() / f"mobile_panda_{digest}.urdf"
+    if not path.exists():
+        _write_atomic(path, text)
+    arm = tuple(f"panda_joint{i}" for i in range(1, 8))
+    return RobotSpec(
+        urdf=path,
+        base_joints=("base_x", "base_y", "base_yaw"),
+        arm_joints=arm,
+        finger_joints=("panda_finger_joint1", "panda_finger_joint2"),
+        tool_frame="panda_grasptarget",
+        base_link="base_link",
+        gripper_links=("panda_hand", "panda_leftfinger", "panda_rightfinger"),
+        home=(0.0, 0.0, 0.0) + PANDA_HOME,
+        # Always touching in the convex-hull model (or through the fixed mount / the hand flange).
+        ignore_pairs=(("panda_link7", "panda_hand"), ("panda_link6", "panda_link7"),
+                      ("panda_link5", "panda_link7"), ("panda_link6", "panda_hand"),
+                      ("base_link", "panda_link0"), ("base_link", "panda_link1"),
+                      ("panda_leftfinger", "panda_rightfinger"),
+                      ("panda_link7", "panda_leftfinger"), ("panda_link7", "panda_rightfinger")),
+        finger_open=0.04,
+        finger_closed=0.0,
+        max_finger_force=20.0,
+    )

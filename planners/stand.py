@@ -1,0 +1,125 @@
+"""Base placement: where the mobile base should stand to grasp the handle and follow the whole opening.
+
+Stand poses are sampled (seeded) in front of the handle: at a distance along the part's outward normal,
+with a lateral offset and the base turned roughly toward the handle. A pose is kept when arm-only IK
+reaches the grasp collision-free; it is *complete* when arm-only IK (base fixed) also reaches the handle
+at ``cfg.stand_path_samples`` points spread along the whole opening path (for a door, the arc).
+Ranking: complete poses first, then the share of the path reached, then the reach margin (the smallest
+normalised distance of an arm joint to its limit along the path).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from planners.config import PlannerConfig
+from planners.ik import solve_ik
+
+__all__ = ["StandPose", "find_stand_poses"]
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class StandPose:
+    """A ranked stand pose.
+
+    Attributes
+    ----------
+    base : (3,) float, base (x m, y m, yaw rad).
+    q_grasp : (dof,) float, configuration at the grasp (task joint at its start value).
+    grasp_index : which grasp candidate (index into ``HandleGrasp.T_link_grasps``).
+    path_share : share of the path samples reached with the base fixed (1.0 = complete).
+    reach_margin : smallest normalised arm joint-limit margin along the reached samples (0..0.5).
+    """
+
+    base: np.ndarray
+    q_grasp: np.ndarray
+    grasp_index: int
+    path_share: float
+    reach_margin: float
+
+    @property
+    def T_world_base(self) -> np.ndarray:
+        c, s = math.cos(self.base[2]), math.sin(self.base[2])
+        T = np.eye(4)
+        T[:2, :2] = [[c, -s], [s, c]]
+        T[:2, 3] = self.base[:2]
+        return T
+
+    def rank_key(self) -> tuple:
+        return (-self.path_share, -self.reach_margin)
+
+
+def _margin(q: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> float:
+    span = np.maximum(upper[3:] - lower[3:], 1e-9)
+    return float(np.min(np.minimum(q[3:] - lower[3:], upper[3:] - q[3:]) / span))
+
+
+def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: PlannerConfig,
+                     rng: np.random.Generator) -> tuple[list[StandPose], str]:
+    """Sample and rank stand poses for grasp paths ``T_paths`` (one ``(m, 4, 4)`` array per grasp candidate)
+    at task joint values ``s_samples (m,)``.
+
+    Returns ``(poses best first, summary)``; ``summary`` says how many were tried and why they failed.
+    """
+    spec = kin.spec
+    lower, upper = world.robot.lower, world.robot.upper
+    p0 = T_paths[0][0][:3, 3]
+    approach = T_paths[0][0][:3, 2]
+    n = -approach[:2]
+    if np.linalg.norm(n) < 1e-6:
+        n = np.array([1.0, 0.0])
+    n = n / np.linalg.norm(n)
+    perp = np.array([-n[1], n[0]])
+    arm = np.zeros(spec.dof, bool)
+    arm[3:] = True
+    m = len(s_samples)
+    idx = np.unique(np.linspace(0, m - 1, max(2, cfg.stand_path_samples)).round().astype(int))
+    kept: list[StandPose] = []
+    n_ik = n_complete = 0
+    for trial in range(cfg.stand_candidates):
+        d = rng.uniform(*cfg.stand_distance)
+        lat = rng.uniform(-cfg.stand_lateral, cfg.stand_lateral)
+        xy = p0[:2] + n * d + perp * lat
+        to_handle = p0[:2] - xy
+        yaw = math.atan2(to_handle[1], to_handle[0]) + rng.uniform(-cfg.stand_yaw_noise, cfg.stand_yaw_noise)
+        q_seed = spec.q_with_base(spec.home_q, xy[0], xy[1], yaw)
+        if world.in_collision(q_seed, s_samples[0], True):   # base (arm at home) collides: cheap rejection
+            continue
+        best = None
+        for gi, T_path in enumerate(T_paths):
+            r = solve_ik(kin.tool_pose_jacobian, T_path[0], q_seed, lower, upper, arm, None,
+                         pos_tol=cfg.ik_pos_tol, rot_tol=cfg.ik_rot_tol, restarts=cfg.ik_restarts, rng=rng,
+                         accept=lambda q: not world.in_collision(q, s_samples[0], True))
+            if not r.success:
+                continue
+            n_ik += 1
+            q, reached, margin = r.q, 1, _margin(r.q, lower, upper)
+            for k in idx[1:]:
+                rk = solve_ik(kin.tool_pose_jacobian, T_path[k], q, lower, upper, arm, None,
+                              pos_tol=cfg.track_pos_tol, rot_tol=cfg.track_rot_tol, restarts=1, rng=rng,
+                              restart_span=np.full(spec.dof, 0.3),
+                              accept=lambda q, s=s_samples[k]: not world.in_collision(q, s, True))
+                if not rk.success:
+                    break
+                q, reached, margin = rk.q, reached + 1, min(margin, _margin(rk.q, lower, upper))
+            cand = StandPose(np.array([xy[0], xy[1], yaw]), r.q, gi, reached / len(idx), margin)
+            if best is None or cand.rank_key() < best.rank_key():
+                best = cand
+            if cand.path_share == 1.0:
+                break
+        if best is not None:
+            kept.append(best)
+            n_complete += best.path_share == 1.0
+            if n_complete >= cfg.stand_keep:
+                break
+    kept.sort(key=StandPose.rank_key)
+    summary = (f"{trial + 1} stand poses sampled, IK reached the grasp from {n_ik}, the whole opening path "
+               f"(base fixed) from {n_complete}")
+    return kept, summary
+
