@@ -109,11 +109,33 @@ def _tasks_section(lay: DemoLayout, cert: dict | None) -> str:
         head = (f"<h3>{esc(task.get('kind', task.get('task', 'task')))} "
                 f"<code>{esc(key)}</code> {badge(status, status == 'certified')}</h3>"
                 f"<p>{esc(task.get('reason', ''))}</p>")
-        figs = "".join(img(png, alt, f"task.{key}.{fig}") for fig, alt, png in task_figures(lay, task, key))
+        figs = "".join(img(png, alt, f"task.{key}.{fig}")
+                       for fig, alt, png in task_figures(lay, task, key, _required_fraction(cert),
+                                                         _executed_urdf(lay, cert)))
         if not figs:
             figs = note(f"No recorded rollout for {key} (the task was not executed).", "info")
         parts.append(f'<div class="task" id="task-{esc(key)}">{head}{criteria_table(key, criteria)}{figs}</div>')
     return "".join(parts)
+
+
+def _required_fraction(cert: Mapping) -> float | None:
+    """The certificate's ``opened_fraction`` criterion threshold (the level drawn on the opening plot)."""
+    crit = cert.get("criteria")
+    if isinstance(crit, Mapping) and isinstance(crit.get("opened_fraction"), (int, float)):
+        return float(crit["opened_fraction"])
+    return None
+
+
+def _executed_urdf(lay: DemoLayout, cert: Mapping) -> Path | None:
+    """The scene the tasks were executed in: the certificate's reference (``--against``), else its scene;
+    relative paths are taken from the demo directory. ``None`` when neither is recorded or exists."""
+    for field in ("against", "scene"):
+        ref = cert.get(field)
+        if isinstance(ref, str) and ref:
+            for p in (Path(ref), lay.root / ref, lay.root / Path(ref).name):
+                if p.exists():
+                    return p
+    return None
 
 
 def _provenance_section(cert: dict | None) -> str:

@@ -45,10 +45,51 @@ def pipeline_table(stages: list[Mapping]) -> str:
     return table(["stage", "status", "time", "what happened"], rows, "pipeline")
 
 
+#: What each summary metric of metrics.json means (shown beside it).
+METRIC_MEANINGS = {
+    "chamfer": "Chamfer distance in the true object's unit box, mean over objects (lower is better)",
+    "iou": "volumetric IoU on a 32^3 voxel grid, mean over objects (higher is better)",
+    "kinematic_map": "mean average precision of contact edges against the true part contacts",
+    "missing_objects": "true objects without a reconstruction",
+    "n_joints": "true joints compared (fixed included)",
+    "type_accuracy": "fraction of true joints whose estimated type is right",
+    "n_movable": "true prismatic / revolute joints",
+    "median_axis_error_deg": "median angle between true and estimated axis (sign-aware), degrees",
+    "median_axis_error_unsigned_deg": "same, ignoring the axis sign, degrees",
+    "n_revolute": "true revolute joints",
+    "median_hinge_distance_m": "median distance of the estimated hinge line from the true one, metres",
+    "median_prismatic_upper_error_m": "median error of a drawer's travel, metres",
+    "median_revolute_upper_error_rad": "median error of a door's opening range, radians",
+}
+
+
 def metrics_table(metrics: Mapping) -> str:
-    """Every numeric leaf of metrics.json, one row each, keyed ``metrics.<path>``."""
-    rows = [[esc(path), num(value, f"metrics.{path}")] for path, value in flatten_numbers(metrics)]
-    return table(["metric", "value"], rows, "metrics")
+    """metrics.json as tables, every number keyed ``metrics.<path>``.
+
+    Format ``partscene.metrics/1`` (written by :mod:`simcheck.demo`): a summary table, one row per
+    object and one row per movable joint. Any other JSON: every numeric leaf, one row each.
+    """
+    if metrics.get("format") != "partscene.metrics/1":
+        rows = [[esc(path), num(value, f"metrics.{path}")] for path, value in flatten_numbers(metrics)]
+        return table(["metric", "value"], rows, "metrics")
+    summary = metrics.get("summary", {})
+    out = "<h3>Scene</h3>" + table(
+        ["metric", "value", "meaning"],
+        [[esc(k), num(v, f"metrics.summary.{k}"), esc(METRIC_MEANINGS.get(k, ""))] for k, v in summary.items()],
+        "metrics")
+    cols = ("chamfer", "iou", "ap")
+    out += "<h3>Objects</h3>" + table(
+        ["object", "category", "status", "Chamfer", "IoU", "contact AP"],
+        [[esc(o.get("name")), esc(o.get("category", "")), esc(o.get("status", ""))]
+         + [num(o.get(c), f"metrics.objects.{o.get('name')}.{c}") for c in cols] for o in metrics.get("objects", [])],
+        "metrics")
+    jcols = ("axis_error_deg", "hinge_distance_m", "upper_error")
+    out += "<h3>Movable joints</h3>" + table(
+        ["joint", "true type", "estimated type", "axis error (deg)", "hinge distance (m)", "range error"],
+        [[f"<code>{esc(j.get('name'))}</code>", esc(j.get("true_type", "")), esc(j.get("est_type", "") or "missing")]
+         + [num(j.get(c), f"metrics.joints.{j.get('name')}.{c}") for c in jcols] for j in metrics.get("joints", [])],
+        "metrics")
+    return out
 
 
 def key_value_table(doc: Mapping, key_prefix: str) -> str:
@@ -73,5 +114,5 @@ def criteria_table(task_key: str, criteria: list[Mapping]) -> str:
         rows.append([esc(name), badge("pass" if passed else "fail", passed) if passed is not None else badge("n/a", None),
                      num(c.get("value"), key + ".value", unit), esc(c.get("comparison", "")),
                      num(c.get("threshold"), key + ".threshold", unit), num(c.get("margin"), key + ".margin", unit),
-                     esc(c.get("description", c.get("reason", "")))])
+                     esc(c.get("description", "")) + (f"<br><i>{esc(c['detail'])}</i>" if c.get("detail") else "")])
     return table(["criterion", "result", "value", "", "threshold", "margin", "meaning"], rows, "criteria")

@@ -46,7 +46,7 @@ def png_of_opening(t: np.ndarray, q: np.ndarray, t_plan: np.ndarray | None, q_pl
     return png_from_figure(fig)
 
 
-def png_of_key_frames(frames: Sequence[tuple[str, np.ndarray]], per_row: int = 4) -> bytes:
+def png_of_key_frames(frames: Sequence[tuple[str, np.ndarray]], per_row: int = 5) -> bytes:
     """A strip of (caption, (h, w, 3) uint8 RGB) images, ``per_row`` per row."""
     n = len(frames)
     rows = max(1, -(-n // per_row))
