@@ -1,7 +1,7 @@
 """Reconstruction metrics of the paper (Sec. IV) and of articulated-object estimation, against truth.json.
 
 Geometry (both in the true object's *unit box*, :mod:`recon.metrics.unit_box`):
-    object_chamfer   symmetric mean nearest-neighbour distance of 20k surface samples per side
+    object_chamfer   symmetric mean point-to-surface distance of 10k surface samples per side
     object_iou       IoU of solid occupancy on the truth's 32^3 voxel lattice
 Kinematic structure:
     contact_edge_ap  average precision of estimated contact edges (ranked by Eq. 1 score) against the
@@ -18,7 +18,8 @@ Scene:
 Pure numpy / scipy / trimesh (manifold3d for unions); no simulator.
 """
 
-from recon.metrics.chamfer import DEFAULT_CHAMFER_SAMPLES, chamfer_distance, object_chamfer, surface_samples
+from recon.metrics.chamfer import (DEFAULT_CHAMFER_SAMPLES, chamfer_distance, distance_to_union_surface,
+                                   object_chamfer, surface_samples)
 from recon.metrics.errors import EstimateError, MetricsError, TruthFormatError
 from recon.metrics.evaluation import (JointSummary, MetricsConfig, ObjectMetrics, ObjectStatus, SceneMetrics,
                                       evaluate_object, evaluate_scene, joint_summary)
@@ -33,7 +34,7 @@ from recon.metrics.unit_box import UnitBox, unit_box_from_truth
 from recon.metrics.voxel_iou import DEFAULT_VOXEL_RESOLUTION, object_iou, occupied_voxels, voxel_iou
 
 __all__ = [
-    "DEFAULT_CHAMFER_SAMPLES", "chamfer_distance", "object_chamfer", "surface_samples",
+    "DEFAULT_CHAMFER_SAMPLES", "chamfer_distance", "distance_to_union_surface", "object_chamfer", "surface_samples",
     "MetricsError", "TruthFormatError", "EstimateError",
     "MetricsConfig", "ObjectStatus", "ObjectMetrics", "SceneMetrics", "JointSummary", "evaluate_object",
     "evaluate_scene", "joint_summary",

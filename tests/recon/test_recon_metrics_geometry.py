@@ -27,7 +27,7 @@ def sphere(radius, xyz=(0.0, 0.0, 0.0)) -> Primitive:
 
 
 # ---------------------------------------------------------------- Chamfer
-def test_chamfer_of_two_parallel_grids_is_their_offset():
+def test_point_set_chamfer_of_two_parallel_grids_is_their_offset():
     g = np.stack(np.meshgrid(np.linspace(0, 1, 30), np.linspace(0, 1, 30), indexing="ij"), -1).reshape(-1, 2)
     a = np.c_[g, np.zeros(len(g))]
     b = np.c_[g, np.full(len(g), 0.03)]
@@ -43,15 +43,15 @@ def test_chamfer_is_symmetric_mean_of_both_directions():
     assert chamfer_distance(b, a) == pytest.approx(0.25)
 
 
-def test_object_chamfer_self_floor_and_concentric_spheres():
+def test_object_chamfer_of_concentric_spheres_is_the_gap():
     truth = [sphere(0.5, (1.0, 2.0, 0.5))]
     box_ = unit_box_from_truth(truth, np.eye(4))
     assert box_.scale == pytest.approx(1.0, abs=2e-3)
-    floor = object_chamfer(truth, truth, box_, seed=0)
-    assert 0.0 < floor < 0.01          # two independent samplings of one surface (documented floor)
+    # point-to-surface distances: no sampling floor, only the icosphere's tessellation (< 0.3%)
+    assert object_chamfer(truth, truth, box_, seed=0) < 0.003
     grown = [sphere(0.55, (1.0, 2.0, 0.5))]
     cd = object_chamfer(truth, grown, box_, seed=0)
-    assert cd == pytest.approx(0.05, abs=0.008)   # every point is 0.05 m = 0.05 unit from the other surface
+    assert cd == pytest.approx(0.05, abs=0.002)   # every point is 0.05 m = 0.05 unit from the other surface
 
 
 def test_object_chamfer_is_invariant_to_a_rigid_motion_of_both_sides():
@@ -78,8 +78,9 @@ def test_object_chamfer_is_in_units_of_the_truths_largest_extent():
     big_shifted = [box([4.0, 2.0, 2.0], (0.0, 0.0, 0.4))]
     cd_big = object_chamfer(big, big_shifted, unit_box_from_truth(big, np.eye(4)), n_samples=5000, seed=0)
     assert cd_big == pytest.approx(cd, abs=1e-6)
-    # and it lies between the floor and the 0.2 m / 2 m = 0.1 shift
+    # and it lies below the 0.2 m / 2 m = 0.1 shift (side faces slide within themselves)
     assert 0.02 < cd < 0.1
+    assert object_chamfer(truth, truth, b) < 1e-9              # boxes mesh exactly
 
 
 @pytest.mark.parametrize("bad, message", [
@@ -154,6 +155,18 @@ def test_estimate_sticking_out_of_the_truth_box_counts_in_the_union():
     b = unit_box_from_truth(truth, np.eye(4))
     bigger = [box([2.0, 0.5, 0.5])]            # twice as long: IoU = 1/2, not 1 (no clipping at the box)
     assert object_iou(truth, bigger, b) == pytest.approx(0.5, abs=1e-12)
+
+
+def test_distance_to_union_surface_outside_inside_and_on_a_seam():
+    from recon.metrics import distance_to_union_surface
+    two = [box([1.0, 1.0, 1.0], (-0.5, 0, 0)), box([1.0, 1.0, 1.0], (0.5, 0, 0))]   # a 2 x 1 x 1 union
+    p = np.array([[1.3, 0, 0],      # outside, 0.3 beyond the +x face
+                  [0.0, 0, 0],      # on the internal seam: truly 0.5 from the union's surface; the
+                                    # documented lower bound (depth in the deepest box) gives 0
+                  [0.9, 0.0, 0.0],  # inside, 0.1 from the +x face
+                  [0.0, 0.7, 0.7]])  # outside near an edge: sqrt(0.2^2 + 0.2^2)
+    d = distance_to_union_surface(p, two)
+    np.testing.assert_allclose(d, [0.3, 0.0, 0.1, np.hypot(0.2, 0.2)], atol=1e-12)
 
 
 def test_voxel_iou_of_index_sets():
