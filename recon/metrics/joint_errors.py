@@ -1,6 +1,7 @@
 """Joint metrics used by articulated-object estimators: type accuracy, axis angle, hinge distance, limits.
 
-Joints are matched by their **child part id** (a part has at most one parent). For every true joint:
+Joints are matched by their **child part id** (a part has at most one parent). For every true joint
+between two parts (a root's joint to the world, ``parent_part_id is None``, is not scored):
 
 - *type correct*: an estimated joint with the same child exists and has the same type (a missing
   estimate counts as wrong);
@@ -96,11 +97,13 @@ def compare_joints(truth: Sequence[JointEstimate], estimate: Sequence[JointEstim
 
     truth, estimate : joints of one object
     child_centres : ``{part_id: (3,) world centre}`` of the true parts (where hinge lines are compared)
-    returns : one :class:`JointComparison` per true joint, in the truth's order
+    returns : one :class:`JointComparison` per true part-to-part joint, in the truth's order
     """
     by_child = {j.child_part_id: j for j in estimate}
     out = []
     for t in truth:
+        if t.parent_part_id is None:
+            continue
         e = by_child.get(t.child_part_id)
         if e is None:
             out.append(JointComparison(t.name, t.child_part_id, t.type.value, "", JointMatch.MISSING,

@@ -128,8 +128,10 @@ def _joint(j: Mapping, part_ids: set, where: str) -> JointEstimate:
         raise TruthFormatError(f"{where}: axis and origin must be 3 finite numbers each")
     if jtype is not JointType.FIXED and abs(np.linalg.norm(axis) - 1.0) > 1e-6:
         raise TruthFormatError(f"{where}: {jtype.value} axis {axis.tolist()} is not a unit vector")
-    parent, child = int(_field(j, "parent_part_id", where)), int(_field(j, "child_part_id", where))
-    for side in (parent, child):
+    parent_raw = _field(j, "parent_part_id", where)
+    parent = None if parent_raw is None else int(parent_raw)      # None: the root's joint to the world
+    child = int(_field(j, "child_part_id", where))
+    for side in (child,) if parent is None else (parent, child):
         if side not in part_ids:
             raise TruthFormatError(f"{where}: names unknown part {side}")
     lower, upper = float(j.get("lower", 0.0)), float(j.get("upper", 0.0))

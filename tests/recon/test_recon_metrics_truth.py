@@ -42,7 +42,9 @@ def cabinet_truth() -> dict:
         "objects": [
             {"id": 3, "name": "cabinet3", "category": "cabinet", "T_world_object": T((1.0, 0.0, 0.0)),
              "size": [0.64, 0.8, 0.8], "supported_by": None, "parts": [body, drawer, handle],
-             "joints": [{"name": "cabinet3_drawer12_joint", "type": "prismatic", "parent_part_id": 11,
+             "joints": [{"name": "cabinet3_body11_joint", "type": "fixed", "parent_part_id": None,
+                         "child_part_id": 11, "axis": [0, 0, 0], "origin": [1.0, 0, 0]},
+                        {"name": "cabinet3_drawer12_joint", "type": "prismatic", "parent_part_id": 11,
                          "child_part_id": 12, "axis": [1, 0, 0], "origin": [1.29, 0, 0.4], "lower": 0.0,
                          "upper": 0.45, "handle_part_id": 13},
                         {"name": "cabinet3_handle13_joint", "type": "fixed", "parent_part_id": 12,
@@ -70,7 +72,8 @@ def test_read_truth_builds_world_shapes(tmp_path):
     np.testing.assert_allclose(top.T_world_part[:3, 3], [1.0, 0.0, 0.79])
     handle = cab.part(13).primitives[0]
     np.testing.assert_allclose(handle.size, [0.02, 0.02, 0.3])
-    assert cab.joints[0].type is JointType.PRISMATIC and cab.joints[0].upper == 0.45
+    assert cab.joints[0].parent_part_id is None           # the root's world joint is read ...
+    assert cab.joints[1].type is JointType.PRISMATIC and cab.joints[1].upper == 0.45
     assert cab.contacts == ((11, 12), (12, 13))
 
 
@@ -90,11 +93,11 @@ def _broken(mutate):
      r"part 12 shape 0: bad box shape"),
     (lambda d: d["objects"][0]["parts"][0].update(T_world_part=[[1, 0], [0, 1]]),
      r"part 11.T_world_part: expected a finite 4x4 pose"),
-    (lambda d: d["objects"][0]["joints"][0].update(child_part_id=99),
+    (lambda d: d["objects"][0]["joints"][1].update(child_part_id=99),
      r"object 3 \(cabinet3\) joint cabinet3_drawer12_joint: names unknown part 99"),
-    (lambda d: d["objects"][0]["joints"][0].update(axis=[2, 0, 0]),
+    (lambda d: d["objects"][0]["joints"][1].update(axis=[2, 0, 0]),
      r"joint cabinet3_drawer12_joint: prismatic axis \[2.0, 0.0, 0.0\] is not a unit vector"),
-    (lambda d: d["objects"][0]["joints"][0].update(type="ball"),
+    (lambda d: d["objects"][0]["joints"][1].update(type="ball"),
      r"joint cabinet3_drawer12_joint: unknown joint type 'ball'"),
     (lambda d: d["objects"][0]["contacts"].append([12, 12]),
      r"object 3 \(cabinet3\): contact edge \[12, 12\] must join two distinct parts"),
@@ -124,6 +127,7 @@ def test_perfect_estimate_scores_perfectly_and_a_missing_object_is_reported():
     assert np.isnan(m.objects[1].ap)             # a one-part object has no true edge
     s = joint_summary(j for o in m.objects for j in o.joints)
     assert s.type_accuracy == 1.0 and s.median_axis_error_deg == 0.0
+    assert s.n_joints == 2                       # ... but not scored: only part-to-part joints
 
     only_stool = evaluate_scene(scene, [perfect_estimate(scene.object(4))], cfg)
     assert only_stool.objects[0].status is ObjectStatus.MISSING and only_stool.missing == 1
