@@ -87,6 +87,7 @@ class _Recorder:
         self.planned_tool = np.full(3, np.nan)
         self.planned_object_q = np.nan
         self.T_handle_grasp: np.ndarray | None = None
+        self.sample_callback = None
 
     def grasp_point(self) -> np.ndarray:
         if self.T_handle_grasp is None or not self.world.attached:
@@ -133,6 +134,8 @@ class _Recorder:
             self.obj_rows.append((k, b, f))
         self.contacts.clear()
         self.obj_contacts.clear()
+        if self.sample_callback is not None:
+            self.sample_callback()
 
 
 def _step(world: World, rec: _Recorder, n: int, on_step=None) -> None:
@@ -145,7 +148,7 @@ def _step(world: World, rec: _Recorder, n: int, on_step=None) -> None:
 
 def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAULT_PHYSICS, *,
                  requested_amount: float | None = None, reset_robot: bool = True,
-                 frame_callback=None) -> Rollout:
+                 frame_callback=None, sample_callback=None) -> Rollout:
     """Execute ``task`` in ``world`` with physics and return the recorded :class:`Rollout`.
 
     Args:
@@ -157,6 +160,7 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
             the scene is left as it is, so a scenario carries the world state from task to task).
         frame_callback: called as ``frame_callback(label)`` at key frames ("start", "grasped",
             "opened", "end") to take pictures.
+        sample_callback: called with no argument after every recorded sample (e.g. video frames).
     """
     t0 = time.perf_counter()
     robot = world.robot_spec
@@ -167,6 +171,7 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
     moving = moving_link_for(world, joint)
     handle = handle_link_for(world, joint, task.grasp_link)
     rec = _Recorder(world, joint, moving, handle, task, config)
+    rec.sample_callback = sample_callback
     q0_obj = world.scene_joint_state(joint)[0]
     vmax_urdf = world.robot_max_velocity()
     vmax = np.where(vmax_urdf > 0, np.minimum(vmax_urdf * config.speed_scale, config.max_joint_speed),

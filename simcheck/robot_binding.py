@@ -68,9 +68,10 @@ def _first(spec, names: tuple[str, ...], default=None):
 def sim_robot_from_spec(spec) -> SimRobot:
     """A :class:`SimRobot` from a ``planners.RobotSpec`` (or any object with the same fields).
 
-    Reads ``urdf``/``urdf_path``, ``joint_names`` (else base + arm joints), ``gripper_joints``,
-    ``gripper_open``/``gripper_closed``, ``tool_frame``/``tool_link``, ``gripper_links``,
-    ``finger_links`` and ``base_links``; a :class:`SimRobot` is returned unchanged.
+    Reads ``urdf``, ``joint_names`` (else base + arm joints), ``finger_joints``, ``finger_open`` /
+    ``finger_closed`` (one value for all fingers, or one each), ``tool_frame``, ``gripper_links``,
+    ``finger_links`` (default: the gripper links named "*finger*"), ``base_link(s)`` and
+    ``max_finger_force``; a :class:`SimRobot` is returned unchanged.
 
     Raises:
         RobotBindingError: a required field is missing (names it).
@@ -101,5 +102,13 @@ def sim_robot_from_spec(spec) -> SimRobot:
     return SimRobot(urdf=Path(urdf), joint_names=tuple(joints), finger_joints=fingers, finger_open=f_open,
                     finger_closed=f_closed, tool_link=str(tool),
                     gripper_links=tuple(gripper_links) or (str(tool),) + finger_links,
-                    finger_links=finger_links, base_links=tuple(_first(spec, ("base_links",), ())),
-                    finger_force=float(_first(spec, ("finger_force", "gripper_force"), 40.0)))
+                    finger_links=finger_links, base_links=_base_links(spec),
+                    finger_force=float(_first(spec, ("finger_force", "max_finger_force", "gripper_force"), 40.0)))
+
+
+def _base_links(spec) -> tuple[str, ...]:
+    links = _first(spec, ("base_links",), None)
+    if links is not None:
+        return tuple(links)
+    one = _first(spec, ("base_link",), None)
+    return (str(one),) if one else ()

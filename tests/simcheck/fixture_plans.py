@@ -89,3 +89,15 @@ def door_plan(amount: float = 1.2, hinge=(0.25, -0.28), radius_xy=(0.06, 0.48), 
         _seg("open", q_open, "closed", th),
         _seg("release", q_open[-1:], "open", [amount]),
         _seg("retreat", line(end, back, 6), "open")))
+
+
+def fixture_planner(plans: dict, status: str = "OK"):
+    """A planner for :func:`simcheck.certify` that returns the hand-made ``plans`` (joint -> PlannedTask)."""
+    from simcheck.certify import PlanOutcome
+
+    def plan(scene_urdf, task, seed, start=None, scene_state=None):
+        if status != "OK" or task.joint not in plans:
+            return PlanOutcome(status if status != "OK" else "NO_PATH", f"fixture has no plan for {task.joint}", None, 0.0)
+        return PlanOutcome("OK", f"hand-made plan for {task.joint}", plans[task.joint], 0.0)
+
+    return plan

@@ -1,0 +1,302 @@
+"""Certify opening tasks: plan on the scene (the estimate), re-check the plan independently, execute it
+with physics on the scene or on a reference (``against``), judge the rollout, write the certificate.
+
+    cert = simcheck.certify("scene.urdf", ["open-drawer:cabinet3_drawer12_joint"], against="truth.urdf",
+                            seed=0, out="out/")
+    assert cert.ok, cert.summary()
+
+Planning is pluggable: ``planner(scene_urdf, task, seed, start, scene_state) -> PlanOutcome``; the
+default calls ``planners.plan_open_task`` with ``planners.default_robot()``.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from simcheck.certificate import Certificate, TaskCertificate, TaskStatus, software_versions
+from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, PhysicsConfig
+from simcheck.criteria import CriterionResult, plan_collision_free, plan_found, rollout_criteria
+from simcheck.estimate_diff import joint_differences
+from simcheck.execute import execute_task, handle_link_for
+from simcheck.keyframes import KeyFrameCamera
+from simcheck.plan_recheck import recheck_plan
+from simcheck.planned_task import PlannedTask, planned_task_from_plan
+from simcheck.robot_binding import SimRobot, sim_robot_from_spec
+from simcheck.scene_joints import read_scene_joints, scene_link_names
+from simcheck.tasks import KINDS, Task, check_task, default_amount, parse_tasks
+from simcheck.world import World
+
+__all__ = ["certify", "PlanOutcome", "planners_planner", "Session", "INPUT_PROBLEM_STATUSES"]
+
+log = logging.getLogger(__name__)
+
+#: planner statuses that mean the input cannot be certified (the object cannot be reached or grasped)
+INPUT_PROBLEM_STATUSES = ("NO_HANDLE", "NO_STAND_POSE")
+
+
+@dataclass(frozen=True)
+class PlanOutcome:
+    """What a planner returned for one task.
+
+    Attributes:
+        status: "OK" or the planner's failure status name ("NO_STAND_POSE", "NO_PATH", ...).
+        reason: the planner's reason (names the joint).
+        plan: the plan to execute when ``status == "OK"``, else None.
+        seconds: planning wall time.
+    """
+
+    status: str
+    reason: str
+    plan: PlannedTask | None
+    seconds: float
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "OK" and self.plan is not None
+
+
+def planners_planner(robot_spec=None, config=None) -> Callable:
+    """A planner function backed by ``planners.plan_open_task`` (``robot_spec`` default: default_robot())."""
+    import planners
+
+    spec = robot_spec or planners.default_robot()
+
+    def plan(scene_urdf, task: Task, seed: int, start=None, scene_state=None) -> PlanOutcome:
+        t0 = time.perf_counter()
+        open_task = planners.OpenTask(kind=task.planner_kind, joint=task.joint, amount=task.amount,
+                                      grasp_point=task.grasp_point, grasp_link=task.grasp_link)
+        result = planners.plan_open_task(spec, str(scene_urdf), open_task, seed=seed, start=start,
+                                         scene_state=scene_state, config=config)
+        if start is not None and result.status.name == "START_IN_COLLISION":
+            result = planners.plan_open_task(spec, str(scene_urdf), open_task, seed=seed, start=None,
+                                             scene_state=scene_state, config=config)
+        seconds = time.perf_counter() - t0
+        if not result.ok:
+            return PlanOutcome(result.status.name, result.reason, None, seconds)
+        planned = planned_task_from_plan(result, task.joint)
+        if task.grasp_link:
+            planned = PlannedTask(planned.joint, planned.amount, planned.joint_names, planned.segments,
+                                  task.grasp_link, planned.collision_checks, planned.timings)
+        return PlanOutcome("OK", result.reason, planned, seconds)
+
+    plan.robot_spec = spec
+    return plan
+
+
+class Session:
+    """Worlds for one certification run: the planning scene and (with ``against``) the reference.
+
+    The scene the plan is executed on keeps its state from task to task only when ``carry_state``
+    (scenarios); otherwise each task starts from the loaded (closed) state.
+    """
+
+    def __init__(self, scene: Path, against: Path | None, robot: SimRobot, physics: PhysicsConfig,
+                 gui: bool = False) -> None:
+        self.scene, self.against, self.robot, self.physics = scene, against, robot, physics
+        self.plan_world = World(scene, robot, physics, gui=gui and against is None)
+        try:
+            self.exec_world = World(against, robot, physics, gui=gui) if against is not None else self.plan_world
+        except Exception:
+            self.plan_world.close()
+            raise
+        self.scene_joints = read_scene_joints(scene)
+        self.ref_joints = read_scene_joints(against) if against is not None else self.scene_joints
+        self.scene_links = set(scene_link_names(scene))
+        self._initial = self.exec_world.snapshot()
+        self._initial_plan = self.plan_world.snapshot() if against is not None else None
+
+    def close(self) -> None:
+        self.plan_world.close()
+        if self.exec_world is not self.plan_world:
+            self.exec_world.close()
+
+    def __enter__(self) -> "Session":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def reset(self) -> None:
+        """Back to the loaded state (between independent tasks)."""
+        self.exec_world.restore(self._initial)
+        if self._initial_plan is not None:
+            self.plan_world.restore(self._initial_plan)
+
+    def exec_state(self) -> dict[str, float]:
+        """Current values of the executed scene's movable joints that the planning scene also has."""
+        out = {}
+        for info in self.exec_world.scene_joints():
+            if info.type in ("prismatic", "revolute") and info.name in self.scene_joints:
+                out[info.name] = self.exec_world.scene_joint_state(info.name)[0]
+        return out
+
+    def sync_plan_world(self, state: dict[str, float]) -> None:
+        """Set the planning scene's joints to ``state`` (kinematically; it is never executed on)."""
+        if self.plan_world is not self.exec_world:
+            for name, value in state.items():
+                self.plan_world.reset_scene_joint(name, value)
+
+    def run_task(self, task: Task, planner: Callable, seed: int, criteria: CriteriaConfig, out: Path | None,
+                 images: bool, video: bool, start=None) -> TaskCertificate:
+        """Plan, re-check, execute and judge one task (the worlds are left in their end state)."""
+        t_all = time.perf_counter()
+        est = self.scene_joints[task.joint]
+        state = self.exec_state()
+        self.sync_plan_world(state)
+        outcome = planner(self.scene, task, seed, start, state)
+        timings = {"plan": outcome.seconds}
+        unit = est.unit
+        if not outcome.ok:
+            problem = outcome.status in INPUT_PROBLEM_STATUSES
+            amount = task.amount if task.amount is not None else default_amount(task.kind, est, state.get(task.joint, 0.0))
+            timings["total"] = time.perf_counter() - t_all
+            return TaskCertificate(task.kind, task.joint, TaskStatus.NOT_PLANNED,
+                                   f"not planned ({outcome.status}): {outcome.reason}", float(amount), unit,
+                                   (plan_found(False, outcome.reason),), seed, timings, plan_status=outcome.status,
+                                   input_problem=problem)
+        plan = outcome.plan
+        t = time.perf_counter()
+        check = recheck_plan(self.plan_world, plan, criteria)
+        timings["recheck"] = time.perf_counter() - t
+        timings["recheck_states"] = check.n_states
+        crit: list[CriterionResult] = [plan_found(True, outcome.reason),
+                                       plan_collision_free(check.max_depth, check.detail, criteria)]
+        ref = self.ref_joints.get(task.joint)
+        if ref is None or ref.type not in ("prismatic", "revolute"):
+            # the reference cannot move this part: nothing to execute; the estimate is wrong
+            timings["total"] = time.perf_counter() - t_all
+            what = "has no joint" if ref is None else f"has a {ref.type} joint"
+            crit.append(CriterionResult("opened_fraction", 0.0, criteria.opened_fraction, ">=", "", False,
+                                        -criteria.opened_fraction, "joint opening reached / requested",
+                                        f"the reference {self.against} {what} {task.joint!r}: the part cannot open"))
+            return self._judged(task, plan, crit, timings, seed, unit, None, [], est, ref)
+        requested = plan.amount if ref.type == est.type else default_amount(
+            "open-door" if ref.type == "revolute" else "open-drawer", ref, state.get(task.joint, 0.0))
+        camera = None
+        w = self.exec_world
+        if out is not None and (images or video):
+            handle = handle_link_for(w, task.joint, plan.grasp_link)
+            camera = KeyFrameCamera(w, w.scene_link_pose(handle)[:3, 3], self._robot_side(plan), out / "images",
+                                    _safe(task.joint), video=video)
+        counter = {"n": 0}
+
+        def on_sample():
+            counter["n"] += 1
+            if counter["n"] % 15 == 0:
+                camera.frame()
+
+        t = time.perf_counter()
+        rollout = execute_task(w, plan, self.physics, requested_amount=requested,
+                               frame_callback=camera.snap if camera else None,
+                               sample_callback=on_sample if camera is not None and video else None)
+        timings["execute"] = time.perf_counter() - t
+        timings["simulated"] = rollout.duration
+        crit.extend(rollout_criteria(rollout, criteria))
+        rel_rollout, rel_images = "", []
+        if out is not None:
+            path = rollout.save(out / "rollouts" / f"{_safe(task.joint)}.npz")
+            rel_rollout = str(path.relative_to(out))
+            if camera is not None:
+                gif = camera.save_video() if video else None
+                rel_images = [str(p.relative_to(out)) for p in camera.paths + ([gif] if gif else [])]
+        timings["total"] = time.perf_counter() - t_all
+        blockers = sorted(set(rollout.object_contact_link[rollout.object_contact_force > criteria.contact_force_tolerance])
+                          - {rollout.handle_link})
+        return self._judged(task, plan, crit, timings, seed, unit, rel_rollout, rel_images, est, ref, blockers)
+
+    def _robot_side(self, plan: PlannedTask) -> np.ndarray:
+        """Where the robot starts (its first tool position): the camera looks from that side."""
+        seg = plan.segments[0]
+        if seg.T_world_tool is not None:
+            return seg.T_world_tool[0][:3, 3]
+        return np.array([1.0, 0.0, 0.0])
+
+    def _judged(self, task, plan, crit, timings, seed, unit, rollout, images, est, ref, blockers=()) -> TaskCertificate:
+        failed = [c for c in crit if not c.passed]
+        if not failed:
+            graded = [c for c in crit if c.name != "plan_found"]
+            worst = min(graded, key=lambda c: c.margin / abs(c.threshold) if c.threshold else c.margin)
+            reason = (f"{len(crit)} criteria passed; smallest relative margin: {worst.name} "
+                      f"({worst.value:.3g} vs {worst.comparison} {worst.threshold:.3g})")
+            status = TaskStatus.CERTIFIED
+        else:
+            status = TaskStatus.FAILED
+            parts = [f"{c.name}: {c.detail}" for c in failed]
+            if self.against is not None:
+                hints = joint_differences(est, ref)
+                unknown = [b for b in blockers if b not in self.scene_links]
+                hints += [f"reference link {b} (absent from the estimate) blocked {task.joint}" for b in unknown]
+                hints += [f"scene link {b} blocked {task.joint}" for b in blockers if b in self.scene_links]
+                if hints:
+                    parts.append("estimate vs reference: " + "; ".join(hints))
+            elif blockers:
+                parts.append("blocked by " + ", ".join(blockers))
+            reason = "; ".join(parts)
+        return TaskCertificate(task.kind, task.joint, status, reason, float(plan.amount), unit, tuple(crit), seed,
+                               timings, rollout or "", tuple(images), plan_status="OK")
+
+
+def _safe(name: str) -> str:
+    return "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in name)
+
+
+def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, planner: Callable | None = None,
+            amounts=None, criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
+            images: bool = True, video: bool = False, gui: bool = False, carry_state: bool = False) -> Certificate:
+    """Certify each task on ``scene``; returns the :class:`Certificate` (written to ``out`` if given).
+
+    Args:
+        scene: the scene URDF to plan on (an estimate, or a truth).
+        tasks: task strings ("open-drawer:JOINT", "open-door:JOINT", optionally "=AMOUNT") or :class:`Task`.
+        against: a reference URDF to execute on instead of ``scene`` (joints matched by name).
+        seed: planning seed (physics is deterministic).
+        out: folder for certificate.json, rollouts/ and images/ (None: nothing written).
+        robot: a ``planners.RobotSpec`` (or :class:`SimRobot` together with ``planner``); default robot if None.
+        planner: ``planner(scene, task, seed, start, scene_state) -> PlanOutcome``; default planners'.
+        amounts: one amount for all tasks or one per task (m or rad), for tasks without one.
+        carry_state: keep the world's state from task to task (a scenario) instead of resetting it.
+
+    Raises:
+        SimcheckInputError (SceneLoadError, TaskSpecError, RobotBindingError): unusable input, naming
+            the file and joint; ``planners.PlannerInputError`` likewise.
+    """
+    t0 = time.perf_counter()
+    scene = Path(scene)
+    against = Path(against) if against is not None else None
+    parsed = parse_tasks(tasks, amounts)
+    joints = read_scene_joints(scene)
+    for task in parsed:
+        check_task(task, scene, joints)
+    if against is not None:
+        read_scene_joints(against)
+    if planner is None:
+        planner = planners_planner(robot if robot is not None and not isinstance(robot, SimRobot) else None)
+        robot = planner.robot_spec
+    if robot is None:
+        raise ValueError("certify: a custom planner needs its robot (robot=...)")
+    sim_robot = sim_robot_from_spec(robot)
+    out_dir = Path(out) if out is not None else None
+    results = []
+    with Session(scene, against, sim_robot, physics, gui=gui) as session:
+        for i, task in enumerate(parsed):
+            if i and not carry_state:
+                session.reset()
+            start = session.exec_world.robot_q() if carry_state and i else None
+            log.info("certifying %s on %s%s", task, scene, f" against {against}" if against else "")
+            cert = session.run_task(task, planner, seed, criteria, out_dir, images, video, start=start)
+            log.info("%s: %s -- %s", task, cert.status.value, cert.reason)
+            results.append(cert)
+    certificate = Certificate(tasks=tuple(results), scene=str(scene), against=str(against) if against else None,
+                              robot=str(sim_robot.urdf), criteria=criteria.to_dict(), seeds={"seed": seed},
+                              versions=software_versions(), timings={"total": time.perf_counter() - t0})
+    if out_dir is not None:
+        path = certificate.write(out_dir)
+        certificate = Certificate(**{**certificate.__dict__, "path": path})
+    return certificate

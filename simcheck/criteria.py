@@ -1,0 +1,213 @@
+"""The certificate's criteria: pure numpy predicates over a recorded :class:`Rollout` (no PyBullet).
+
+Each predicate returns a :class:`CriterionResult` with its value, threshold and margin (positive margin
+= passed, by how much; negative = failed, by how much) and, when it fails, a detail that says what
+went wrong in terms of the scene (joint, link, time). Thresholds come from :class:`CriteriaConfig`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from simcheck.config import DEFAULT_CRITERIA, CriteriaConfig
+from simcheck.rollout import Rollout
+
+__all__ = ["CriterionResult", "opened_fraction", "handle_path_deviation", "settled_linear_speed",
+           "settled_angular_speed", "unexpected_contact_force", "unexpected_contact_depth", "grasp_held",
+           "robot_joint_limits", "plan_found", "plan_collision_free", "rollout_criteria", "FLOOR"]
+
+FLOOR = "floor"
+
+
+@dataclass(frozen=True)
+class CriterionResult:
+    """One criterion judged on one task.
+
+    Attributes:
+        name: criterion name (stable; certificates and reports key on it).
+        value: the measured value (``inf`` when it could not be measured, e.g. no grasp was made).
+        threshold: the limit from :class:`CriteriaConfig`.
+        comparison: ">=" (value must be at least threshold) or "<=" (at most).
+        unit: "m", "rad", "m/s", "rad/s", "N", "" (fraction / count).
+        passed: value compares correctly with threshold.
+        margin: ``value - threshold`` for ">=", ``threshold - value`` for "<=" (negative: failed).
+        description: what the criterion measures.
+        detail: what happened (names joint/link/time), mainly when it failed.
+    """
+
+    name: str
+    value: float
+    threshold: float
+    comparison: str
+    unit: str
+    passed: bool
+    margin: float
+    description: str
+    detail: str = ""
+
+    def to_dict(self) -> dict:
+        """JSON-ready: non-finite numbers become ``None``."""
+        d = asdict(self)
+        for k in ("value", "margin", "threshold"):
+            if not math.isfinite(d[k]):
+                d[k] = None
+        return d
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "CriterionResult":
+        d = dict(d)
+        for k in ("value", "margin"):
+            if d.get(k) is None:
+                d[k] = math.inf if k == "value" and d["comparison"] == "<=" else -math.inf
+        d["threshold"] = float(d["threshold"]) if d.get("threshold") is not None else math.nan
+        return cls(**d)
+
+
+def _judge(name, value, threshold, comparison, unit, description, detail_fail, detail_pass="") -> CriterionResult:
+    value = float(value)
+    if math.isnan(value):
+        value = math.inf if comparison == "<=" else -math.inf
+    margin = value - threshold if comparison == ">=" else threshold - value
+    passed = bool(margin >= 0)
+    return CriterionResult(name, value, float(threshold), comparison, unit, passed, float(margin), description,
+                           detail_pass if passed else detail_fail)
+
+
+def opened_fraction(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """(final joint value - initial value) / requested amount, at the end of the rollout."""
+    opened = float(r.object_q[-1] - r.object_q0)
+    frac = opened / r.requested_amount if r.requested_amount > 0 else -math.inf
+    return _judge("opened_fraction", frac, c.opened_fraction, ">=", "",
+                  "joint opening reached at the end / opening requested",
+                  f"joint {r.joint} opened {opened:.3f} of the requested {r.requested_amount:.3f} "
+                  f"({frac:.0%}, needs {c.opened_fraction:.0%})")
+
+
+def handle_path_deviation(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """Max distance, m, between the grasped point of the handle and the planned tool position over the
+    opening segment (time-aligned: the plan's pose at the same instant, and its last pose while holding)."""
+    mask = r.in_segment("open") & np.all(np.isfinite(r.planned_tool_pos), axis=1)
+    desc = "max distance between the grasped handle point and the planned path during the opening"
+    if not mask.any():
+        return _judge("handle_path_deviation", math.inf, c.handle_path_tolerance, "<=", "m", desc,
+                      f"the opening of joint {r.joint} was not executed with a planned tool path")
+    d = np.linalg.norm(r.grasp_point[mask] - r.planned_tool_pos[mask], axis=1)
+    if not np.isfinite(d).any():
+        return _judge("handle_path_deviation", math.inf, c.handle_path_tolerance, "<=", "m", desc,
+                      f"handle link {r.handle_link} was never grasped, so it did not follow the planned path")
+    lost = ~np.isfinite(d)
+    worst = int(np.nanargmax(d))
+    t = r.t[mask][worst]
+    value = math.inf if lost.any() else float(d[worst])
+    detail = (f"handle {r.handle_link} left the planned path by {np.nanmax(d):.3f} m at t={t:.2f} s"
+              + (f" and was lost for {lost.mean():.0%} of the opening" if lost.any() else "")
+              + f" (the articulation of {r.joint} does not move the handle along the planned path)")
+    return _judge("handle_path_deviation", value, c.handle_path_tolerance, "<=", "m", desc, detail)
+
+
+def _final_speed(values: np.ndarray) -> float:
+    return float(values[-1]) if len(values) else math.inf
+
+
+def settled_linear_speed(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """Linear speed, m/s, of the moved link at the end of the rollout."""
+    v = _final_speed(r.link_speed)
+    return _judge("settled_linear_speed", v, c.settled_linear_speed, "<=", "m/s",
+                  "speed of the moved link at the end", f"link {r.moving_link} still moves at {v:.3f} m/s at the end")
+
+
+def settled_angular_speed(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """Angular speed, rad/s, of the moved link at the end of the rollout."""
+    w = _final_speed(r.link_angular_speed)
+    return _judge("settled_angular_speed", w, c.settled_angular_speed, "<=", "rad/s",
+                  "angular speed of the moved link at the end",
+                  f"link {r.moving_link} still turns at {w:.3f} rad/s at the end")
+
+
+def _unexpected(r: Rollout) -> np.ndarray:
+    """(m,) bool: robot contacts other than gripper links vs the grasped handle link."""
+    allowed = np.isin(r.contact_robot_link, list(r.gripper_links)) & (r.contact_scene_link == r.handle_link)
+    return ~allowed
+
+
+def _worst_contact(r: Rollout, values: np.ndarray, mask: np.ndarray) -> tuple[float, str]:
+    if not mask.any():
+        return 0.0, ""
+    i = int(np.argmax(np.where(mask, values, -np.inf)))
+    k = int(r.contact_sample[i])
+    seg = r.segment_names[r.segment[k]] if 0 <= r.segment[k] < len(r.segment_names) else "settle"
+    return float(values[i]), (f"robot link {r.contact_robot_link[i]} hit scene link {r.contact_scene_link[i]} "
+                              f"at t={r.t[k]:.2f} s during {seg}")
+
+
+def unexpected_contact_force(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """Largest normal force, N, of a robot-scene (or robot-floor) contact other than gripper-handle."""
+    value, where = _worst_contact(r, r.contact_force, _unexpected(r))
+    return _judge("unexpected_contact_force", value, c.contact_force_tolerance, "<=", "N",
+                  "largest force of a robot-scene contact other than gripper-handle",
+                  f"{where} with {value:.1f} N")
+
+
+def unexpected_contact_depth(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """Deepest penetration, m, of a robot-scene contact other than gripper-handle."""
+    value, where = _worst_contact(r, r.contact_depth, _unexpected(r))
+    return _judge("unexpected_contact_depth", value, c.contact_penetration_tolerance, "<=", "m",
+                  "deepest penetration of a robot-scene contact other than gripper-handle",
+                  f"{where}, {value * 1e3:.1f} mm deep")
+
+
+def grasp_held(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """Max slip, m, between the tool and the grasped point of the handle during the opening segment
+    (``inf`` if the grasp did not exist for the whole segment)."""
+    mask = r.in_segment("open")
+    desc = "max slip between the tool and the grasped handle point while opening (inf: grasp not held)"
+    note = f" ({r.grasp_note})" if r.grasp_note else ""
+    if not mask.any():
+        return _judge("grasp_held", math.inf, c.grasp_slip_tolerance, "<=", "m", desc,
+                      f"no opening segment was executed for joint {r.joint}{note}")
+    active = r.grasp_active[mask]
+    if not active.any():
+        return _judge("grasp_held", math.inf, c.grasp_slip_tolerance, "<=", "m", desc,
+                      f"the gripper never held handle {r.handle_link}{note}")
+    slip = np.linalg.norm(r.grasp_point[mask] - r.tool_pos[mask], axis=1)
+    if not active.all():
+        t_lost = r.t[mask][int(np.argmin(active))]
+        return _judge("grasp_held", math.inf, c.grasp_slip_tolerance, "<=", "m", desc,
+                      f"the grasp of handle {r.handle_link} was lost at t={t_lost:.2f} s{note}")
+    value = float(np.max(slip))
+    return _judge("grasp_held", value, c.grasp_slip_tolerance, "<=", "m", desc,
+                  f"handle {r.handle_link} slipped {value:.3f} m in the gripper{note}")
+
+
+def robot_joint_limits(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """Largest excursion of a robot joint beyond its URDF limits, rad or m."""
+    over = np.maximum(r.robot_q - r.robot_upper[None, :], r.robot_lower[None, :] - r.robot_q)
+    over = np.where(np.isfinite(over), over, 0.0)
+    value = float(max(over.max(), 0.0)) if over.size else 0.0
+    j = int(np.unravel_index(np.argmax(over), over.shape)[1]) if over.size else 0
+    name = r.robot_joint_names[j] if r.robot_joint_names else "?"
+    return _judge("robot_joint_limits", value, c.joint_limit_tolerance, "<=", "rad|m",
+                  "largest excursion of a robot joint beyond its limits",
+                  f"robot joint {name} went {value:.3f} beyond its limits")
+
+
+def plan_found(found: bool, reason: str = "") -> CriterionResult:
+    """1 when the planner returned a plan, else 0 (the planner's reason as detail)."""
+    return _judge("plan_found", 1.0 if found else 0.0, 1.0, ">=", "", "the planner found a plan", reason)
+
+
+def plan_collision_free(max_depth: float, detail: str, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """Deepest robot-scene penetration, m, along the densely interpolated plan, from the independent
+    PyBullet re-check (gripper-handle contacts excepted)."""
+    return _judge("plan_collision_free", max_depth, c.plan_penetration_tolerance, "<=", "m",
+                  "deepest penetration along the plan, re-checked independently in PyBullet", detail)
+
+
+def rollout_criteria(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> tuple[CriterionResult, ...]:
+    """Every rollout criterion, in the order a failure reason lists them (most telling first)."""
+    return (grasp_held(r, c), opened_fraction(r, c), handle_path_deviation(r, c), unexpected_contact_force(r, c),
+            unexpected_contact_depth(r, c), settled_linear_speed(r, c), settled_angular_speed(r, c),
+            robot_joint_limits(r, c))

@@ -1,0 +1,43 @@
+"""How an estimated joint differs from the reference's joint of the same name (pure numpy).
+
+Used with ``--against`` to make a failed certificate's reason point at the fault: the certificate's
+status comes from the physics criteria alone; this only explains it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from simcheck.scene_joints import SceneJoint, axis_angle_deg
+
+__all__ = ["joint_differences", "AXIS_TOLERANCE_DEG", "ORIGIN_TOLERANCE", "LIMIT_TOLERANCE"]
+
+#: axes closer than this (degrees) are "the same axis"
+AXIS_TOLERANCE_DEG = 5.0
+#: hinge lines closer than this (metres) are "the same hinge"
+ORIGIN_TOLERANCE = 0.03
+#: upper limits closer than this (fraction of the reference range) are "the same limits"
+LIMIT_TOLERANCE = 0.05
+
+
+def joint_differences(est: SceneJoint, ref: SceneJoint | None) -> list[str]:
+    """Human-readable differences of ``est`` (the estimate) from ``ref`` (the reference), worst first."""
+    if ref is None:
+        return [f"the reference has no joint {est.name!r}"]
+    out = []
+    if est.type != ref.type:
+        out.append(f"joint {est.name} is {est.type} in the estimate but {ref.type} in the reference")
+        return out
+    angle = axis_angle_deg(est.axis_world, ref.axis_world)
+    if angle > AXIS_TOLERANCE_DEG:
+        out.append(f"the estimated axis of {est.name} is {angle:.0f} deg off the reference axis")
+    if est.type == "revolute":
+        d = float(np.linalg.norm(np.cross(ref.origin_world - est.origin_world, ref.axis_world)))
+        if d > ORIGIN_TOLERANCE:
+            out.append(f"the estimated hinge of {est.name} is {d:.2f} m from the reference hinge"
+                       + (" (hinged on the wrong side)" if angle > 90 or d > 0.2 else ""))
+    ref_range = max(ref.upper - ref.lower, 1e-9)
+    if est.upper - ref.upper > LIMIT_TOLERANCE * ref_range:
+        out.append(f"the estimated upper limit of {est.name} ({est.upper:.3f} {est.unit}) exceeds the "
+                   f"reference's ({ref.upper:.3f} {ref.unit})")
+    return out
