@@ -1,0 +1,234 @@
+"""report.html, looked at in headless Chromium: every image decodes and is not blank, and every number the
+page shows equals the one in certificate.json / metrics.json.
+
+Chromium is driven through its command line only (``--dump-dom`` after a probe script measured the page,
+then ``--screenshot``); no selenium. Skipped, with the reason, only when /usr/bin/chromium is absent.
+"""
+
+from __future__ import annotations
+
+import base64
+import io
+import json
+import math
+import re
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from simcheck.report import ArtifactError, render_report
+
+FIXTURE = Path(__file__).with_name("test_simcheck_report_data")
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                  "--hide-scrollbars", "--force-device-scale-factor=1"]
+WIDTH = 1280
+#: An image region whose pixel standard deviation (0-255 grey levels) is below this is blank.
+MIN_PIXEL_STD = 4.0
+
+# Appended to a COPY of the report (the report itself has no script): measures every image and number.
+PROBE = """
+<script>
+window.addEventListener('load', () => {
+  const imgs = [...document.images].map(im => {
+    const r = im.getBoundingClientRect();
+    return {figure: im.dataset.figure, complete: im.complete, w: im.naturalWidth, h: im.naturalHeight,
+            x: r.left + window.scrollX, y: r.top + window.scrollY, rw: r.width, rh: r.height};
+  });
+  const nums = [...document.querySelectorAll('[data-key]')].map(e => [e.dataset.key, e.textContent]);
+  const pre = document.createElement('pre');
+  pre.id = 'probe';
+  pre.textContent = JSON.stringify({imgs, nums, height: document.documentElement.scrollHeight});
+  document.body.appendChild(pre);
+});
+</script>
+"""
+
+
+def _chromium(args: list[str], profile: Path, timeout: float = 90) -> subprocess.CompletedProcess:
+    return subprocess.run([CHROMIUM, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", *args],
+                          capture_output=True, text=True, timeout=timeout, check=False)
+
+
+def _demo_dir(tmp_path: Path) -> Path:
+    """A copy of the committed demo artifacts (the renderer must not need to write beside inputs)."""
+    dst = tmp_path / "demo"
+    shutil.copytree(FIXTURE, dst)
+    return dst
+
+
+@pytest.fixture(scope="module")
+def rendered(tmp_path_factory) -> dict:
+    """Render the fixture demo once, then probe it in Chromium and screenshot it."""
+    if CHROMIUM is None:
+        pytest.skip("chromium is not installed (apt-get install chromium chromium-driver; `make setup` does)")
+    tmp = tmp_path_factory.mktemp("report")
+    demo = _demo_dir(tmp)
+    html_path = render_report(demo)
+    html = html_path.read_text()
+    probe_path = demo / "probe.html"
+    probe_path.write_text(html.replace("</body>", PROBE + "</body>"))
+    with tempfile.TemporaryDirectory() as profile:
+        dom = _chromium(["--virtual-time-budget=10000", "--dump-dom", probe_path.as_uri()], Path(profile))
+    m = re.search(r'<pre id="probe">(.*?)</pre>', dom.stdout, re.S)
+    assert m, f"chromium did not run the probe: rc={dom.returncode} stderr={dom.stderr[-2000:]}"
+    probe = json.loads(m.group(1).replace("&quot;", '"').replace("&lt;", "<").replace("&gt;", ">")
+                       .replace("&amp;", "&"))
+    height = int(probe["height"]) + 10
+    shot = tmp / "report.png"
+    with tempfile.TemporaryDirectory() as profile:
+        res = _chromium([f"--window-size={WIDTH},{height}", f"--screenshot={shot}", html_path.as_uri()],
+                        Path(profile))
+    assert shot.exists(), f"no screenshot: rc={res.returncode} stderr={res.stderr[-2000:]}"
+    return {"demo": demo, "html": html, "probe": probe, "screenshot": Image.open(shot).convert("RGB")}
+
+
+def test_report_is_self_contained(rendered):
+    html = rendered["html"]
+    assert "<script" not in html.lower(), "the report must work without JavaScript"
+    assert not re.search(r'(src|href)\s*=\s*"(?!data:|#)', html), "every src/href must be a data URI or an anchor"
+    assert "http://" not in html and "https://" not in html
+
+
+def test_every_image_decodes_and_is_not_blank_in_chromium(rendered):
+    imgs, shot = rendered["probe"]["imgs"], rendered["screenshot"]
+    figures = {im["figure"] for im in imgs}
+    # the story: scan, recon beside truth, a part tree per object, and per task an opening plot + key frames
+    assert {"scan", "scene"} <= figures
+    assert any(f.startswith("tree.") for f in figures)
+    cert = json.loads((rendered["demo"] / "certificate.json").read_text())
+    for task in cert["tasks"]:
+        if task.get("rollout"):
+            assert f"task.{task['joint']}.opening" in figures, task["joint"]
+            assert f"task.{task['joint']}.frames" in figures, task["joint"]
+    assert shot.width == WIDTH
+    for im in imgs:
+        assert im["complete"] and im["w"] > 0 and im["h"] > 0, f"image {im['figure']} did not decode: {im}"
+        assert im["rw"] > 50 and im["rh"] > 50, f"image {im['figure']} is drawn too small: {im}"
+        box = (int(im["x"]), int(im["y"]), int(im["x"] + im["rw"]), int(im["y"] + im["rh"]))
+        assert box[3] <= shot.height, f"image {im['figure']} is outside the screenshot {shot.size}"
+        region = np.asarray(shot.crop(box).convert("L"), dtype=float)
+        assert region.std() > MIN_PIXEL_STD, f"image {im['figure']} looks blank on screen (std {region.std():.2f})"
+
+
+def test_every_image_data_uri_is_a_non_blank_png(rendered):
+    uris = re.findall(r'<img src="data:image/png;base64,([^"]+)"', rendered["html"])
+    assert len(uris) == len(rendered["probe"]["imgs"])
+    for b64 in uris:
+        im = Image.open(io.BytesIO(base64.b64decode(b64)))
+        assert im.format == "PNG"
+        assert np.asarray(im.convert("L"), dtype=float).std() > MIN_PIXEL_STD
+
+
+def _lookup(doc, path: list[str]):
+    """Walk a JSON tree by dotted components; list items match their name/joint/id field, else index."""
+    for comp in path:
+        if isinstance(doc, dict):
+            assert comp in doc, f"key {comp!r} not in {sorted(doc)}"
+            doc = doc[comp]
+        else:
+            match = [x for x in doc if isinstance(x, dict) and str(x.get("name", x.get("joint", x.get("id")))) == comp]
+            doc = match[0] if match else doc[int(comp)]
+    return doc
+
+
+def _shown_equals(text: str, value) -> bool:
+    if value is None:
+        return text == "–"
+    if isinstance(value, bool):
+        return text == ("yes" if value else "no")
+    if isinstance(value, float) and math.isinf(value):
+        return text == ("inf" if value > 0 else "-inf")
+    shown = float(text)
+    return math.isclose(shown, float(value), rel_tol=5e-4, abs_tol=1e-12)  # 4 significant digits
+
+
+def test_numbers_shown_equal_the_certificate_and_metrics(rendered):
+    demo = rendered["demo"]
+    cert = json.loads((demo / "certificate.json").read_text())
+    metrics = json.loads((demo / "metrics.json").read_text())
+    shown = dict(rendered["probe"]["nums"])
+    assert len(shown) == len(rendered["probe"]["nums"]), "two numbers share one data-key"
+    # every criterion of every task is on the page with its value, threshold and margin ...
+    for task in cert["tasks"]:
+        for crit in task["criteria"]:
+            for fld in ("value", "threshold", "margin"):
+                key = f"cert.{task['joint']}.{crit['name']}.{fld}"
+                assert key in shown, f"{key} is not shown"
+                assert _shown_equals(shown[key], crit[fld]), f"{key}: page shows {shown[key]!r}, file has {crit[fld]!r}"
+    # ... and every number on the page is the one in its file
+    n_checked = 0
+    for key, text in shown.items():
+        source, *path = key.split(".")
+        if source == "cert" and path[0] not in ("criteria", "seeds", "versions", "timings"):
+            task = next(t for t in cert["tasks"] if t["joint"] == path[0])
+            crit = next(c for c in task["criteria"] if c["name"] == path[1])
+            value = crit[path[2]]
+        elif source == "cert":
+            value = _lookup(cert, path)
+        elif source == "metrics":
+            value = _lookup(metrics, path)
+        else:
+            continue  # demo.* stage timings come from demo.json
+        assert _shown_equals(text, value), f"{key}: page shows {text!r}, file has {value!r}"
+        n_checked += 1
+    assert n_checked >= 10
+
+
+def test_screenshot_is_the_report_not_an_error_page(rendered):
+    shot = np.asarray(rendered["screenshot"].convert("L"), dtype=float)
+    assert shot.shape[0] > 2000, "the report should be a long page of figures and tables"
+    assert shot.std() > 20
+
+
+def test_malformed_certificate_is_rejected_naming_the_file(tmp_path):
+    demo = _demo_dir(tmp_path)
+    (demo / "certificate.json").write_text(json.dumps({"tasks": {"not": "a list"}}))
+    with pytest.raises(ArtifactError, match=r"certificate\.json.*'tasks'"):
+        render_report(demo)
+
+
+def test_invalid_json_is_rejected_naming_the_file(tmp_path):
+    demo = _demo_dir(tmp_path)
+    (demo / "metrics.json").write_text("{not json")
+    with pytest.raises(ArtifactError, match=r"metrics\.json: not valid JSON"):
+        render_report(demo)
+
+
+def test_bad_truth_shape_is_rejected_naming_object_and_part(tmp_path):
+    demo = _demo_dir(tmp_path)
+    truth = json.loads((demo / "truth" / "truth.json").read_text())
+    obj = truth["objects"][0]
+    part = obj["parts"][0]
+    part["shapes"][0] = {"type": "box", "size": [0.1, -0.2, 0.3], "T_part_shape": np.eye(4).tolist()}
+    (demo / "truth" / "truth.json").write_text(json.dumps(truth))
+    with pytest.raises(ArtifactError, match=rf"truth\.json: object {obj['name']} part {part['link']}: box size"):
+        render_report(demo)
+
+
+def test_missing_demo_dir_is_rejected(tmp_path):
+    with pytest.raises(ArtifactError, match="demo directory does not exist"):
+        render_report(tmp_path / "nope")
+
+
+def test_missing_artifacts_are_announced_not_invented(tmp_path):
+    demo = _demo_dir(tmp_path)
+    (demo / "certificate.json").unlink()
+    shutil.rmtree(demo / "rollouts", ignore_errors=True)
+    html = render_report(demo).read_text()
+    assert "Not available: the certificate (certificate.json was not found" in html
+    assert 'data-key="cert.' not in html
+
+
+def test_inputs_are_not_modified(tmp_path):
+    demo = _demo_dir(tmp_path)
+    before = {p: p.read_bytes() for p in demo.rglob("*") if p.is_file()}
+    render_report(demo, tmp_path / "elsewhere" / "r.html")
+    after = {p: p.read_bytes() for p in demo.rglob("*") if p.is_file()}
+    assert before == after
