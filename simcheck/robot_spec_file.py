@@ -1,0 +1,60 @@
+"""``--robot SPEC``: the default robot, or a robot described in a YAML/JSON file.
+
+A robot spec file holds the fields of ``planners.RobotSpec`` (``urdf`` relative to the file)::
+
+    urdf: my_robot.urdf
+    base_joints: [base_x, base_y, base_yaw]
+    arm_joints: [j1, j2, j3, j4, j5, j6]
+    finger_joints: [finger_left, finger_right]
+    tool_frame: tool
+    base_link: base_link
+    gripper_links: [hand, finger_left_link, finger_right_link]
+    home: [0, 0, 0, 0, -0.8, 0, -2.3, 0, 1.6]
+    finger_open: 0.04
+    finger_closed: 0.0
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from simcheck.errors import RobotBindingError
+
+__all__ = ["load_robot_spec"]
+
+
+def load_robot_spec(spec: str | None):
+    """``planners.RobotSpec`` for ``spec`` ("default"/None, or a .yaml/.json file).
+
+    Raises:
+        RobotBindingError: unreadable file or fields planners rejects (names the file).
+    """
+    import planners
+
+    if spec in (None, "", "default"):
+        return planners.default_robot()
+    path = Path(spec)
+    if not path.is_file():
+        raise RobotBindingError(f"robot spec {path} does not exist (use --robot default or a YAML/JSON file)")
+    try:
+        if path.suffix.lower() == ".json":
+            doc = json.loads(path.read_text())
+        else:
+            import yaml
+            doc = yaml.safe_load(path.read_text())
+    except Exception as exc:
+        raise RobotBindingError(f"robot spec {path} cannot be parsed: {exc}") from exc
+    if not isinstance(doc, dict) or "urdf" not in doc:
+        raise RobotBindingError(f"robot spec {path}: expected a mapping with at least 'urdf'")
+    doc = dict(doc)
+    doc["urdf"] = (path.parent / doc["urdf"]).resolve()
+    for key in ("base_joints", "arm_joints", "finger_joints", "gripper_links", "home"):
+        if key in doc:
+            doc[key] = tuple(doc[key])
+    if "ignore_pairs" in doc:
+        doc["ignore_pairs"] = tuple(tuple(p) for p in doc["ignore_pairs"])
+    try:
+        return planners.RobotSpec(**doc)
+    except (TypeError, ValueError) as exc:
+        raise RobotBindingError(f"robot spec {path}: {exc}") from exc

@@ -1,0 +1,91 @@
+"""Scripted scenarios: a scene, a robot, and a sequence of tasks run one after the other with the world
+state carried from task to task (drawer A stays open while door B is opened).
+
+``SCENARIO.yaml``::
+
+    scene: truth.urdf            # relative paths are relative to the YAML file
+    against: null                # optional reference URDF to execute on
+    robot: default               # or a robot spec file (see simcheck.robot_spec)
+    seed: 0
+    tasks:
+      - open-drawer:cabinet3_drawer12_joint
+      - {kind: open-door, joint: cabinet5_door14_joint, amount: 1.2}
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from simcheck.errors import ScenarioError
+from simcheck.tasks import Task, parse_task
+
+__all__ = ["Scenario", "load_scenario"]
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A parsed scenario (paths absolute)."""
+
+    path: Path
+    scene: Path
+    against: Path | None
+    robot: str
+    seed: int
+    tasks: tuple[Task, ...]
+
+
+def _task(entry, path: Path, i: int) -> Task:
+    if isinstance(entry, str):
+        return parse_task(entry)
+    if isinstance(entry, dict):
+        if "kind" in entry and "joint" in entry:
+            kind, joint = entry["kind"], entry["joint"]
+        elif len([k for k in entry if k.startswith("open-")]) == 1:
+            kind = next(k for k in entry if k.startswith("open-"))
+            joint = entry[kind]
+        else:
+            raise ScenarioError(f"{path}: tasks[{i}] needs 'kind' and 'joint' (or 'open-drawer: JOINT'), got {entry}")
+        gp = entry.get("grasp_point")
+        return Task(kind=str(kind), joint=str(joint), amount=entry.get("amount"),
+                    grasp_point=tuple(float(v) for v in gp) if gp is not None else None,
+                    grasp_link=entry.get("grasp_link"))
+    raise ScenarioError(f"{path}: tasks[{i}] must be a string or a mapping, got {type(entry).__name__}")
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    """Read and check ``SCENARIO.yaml``.
+
+    Raises:
+        ScenarioError: missing file, invalid YAML, missing/ill-typed field (names the file and field).
+    """
+    import yaml
+
+    path = Path(path)
+    if not path.is_file():
+        raise ScenarioError(f"scenario {path} does not exist")
+    try:
+        doc = yaml.safe_load(path.read_text())
+    except yaml.YAMLError as exc:
+        raise ScenarioError(f"scenario {path} is not valid YAML: {exc}") from exc
+    if not isinstance(doc, dict):
+        raise ScenarioError(f"scenario {path}: expected a mapping with 'scene' and 'tasks'")
+    if "scene" not in doc:
+        raise ScenarioError(f"scenario {path}: field 'scene' is missing")
+    tasks = doc.get("tasks")
+    if not isinstance(tasks, list) or not tasks:
+        raise ScenarioError(f"scenario {path}: field 'tasks' must be a non-empty list")
+    base = path.parent
+
+    def resolve(p):
+        return None if p is None else (base / str(p)).resolve()
+
+    try:
+        seed = int(doc.get("seed", 0))
+    except (TypeError, ValueError):
+        raise ScenarioError(f"scenario {path}: field 'seed' must be an integer, got {doc.get('seed')!r}") from None
+    robot = str(doc.get("robot", "default"))
+    if robot != "default":
+        robot = str(resolve(robot))
+    return Scenario(path=path, scene=resolve(doc["scene"]), against=resolve(doc.get("against")), robot=robot,
+                    seed=seed, tasks=tuple(_task(t, path, i) for i, t in enumerate(tasks)))
