@@ -10,9 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
-__all__ = ["IKResult", "pose_error", "solve_ik"]
+__all__ = ["IKResult", "pose_error", "rotvec_from_matrix", "solve_ik"]
 
 
 @dataclass(frozen=True)
@@ -30,8 +29,30 @@ def pose_error(T: np.ndarray, T_target: np.ndarray) -> np.ndarray:
     """``(6,)`` error (world frame): target minus current position, then the rotation vector of R_t R^T."""
     e = np.empty(6)
     e[:3] = T_target[:3, 3] - T[:3, 3]
-    e[3:] = Rotation.from_matrix(T_target[:3, :3] @ T[:3, :3].T).as_rotvec()
+    e[3:] = rotvec_from_matrix(T_target[:3, :3] @ T[:3, :3].T)
     return e
+
+
+def rotvec_from_matrix(R: np.ndarray) -> np.ndarray:
+    """``(3,)`` rotation vector (axis * angle, rad) of the rotation matrix ``R (3, 3)`` (the SO(3) log).
+
+    Written out because scipy's ``Rotation.from_matrix`` costs ~100 us a call, more than an IK iteration.
+    """
+    w = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    c = min(1.0, max(-1.0, (R[0, 0] + R[1, 1] + R[2, 2] - 1.0) / 2.0))
+    angle = float(np.arccos(c))
+    if angle < 1e-6:
+        return 0.5 * w
+    if angle < np.pi - 1e-3:
+        return angle / (2.0 * np.sin(angle)) * w
+    # Near a half turn: the axis is the dominant column of (R + I) / 2 (its sign from w).
+    B = (R + np.eye(3)) / 2.0
+    k = int(np.argmax(np.diag(B)))
+    axis = B[:, k] / np.sqrt(max(B[k, k], 1e-12))
+    axis /= np.linalg.norm(axis)
+    if axis @ w < 0:
+        axis = -axis
+    return angle * axis
 
 
 def solve_ik(pose_jacobian, T_target: np.ndarray, q_seed: np.ndarray, lower: np.ndarray, upper: np.ndarray,
@@ -79,14 +100,19 @@ def solve_ik(pose_jacobian, T_target: np.ndarray, q_seed: np.ndarray, lower: np.
 
 def _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping, max_iter, max_step) -> IKResult:
     W = np.sqrt(w)
+    damp = damping ** 2 * np.eye(6)
+    history = []
     for it in range(1, max_iter + 1):
         T, J = pose_jacobian(q)
         e = pose_error(T, T_target)
         pe, re = float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:]))
         if pe < pos_tol and re < rot_tol:
             return IKResult(True, q, pe, re, it)
+        history.append(pe + 0.1 * re)
+        if it > 20 and history[-1] > 0.97 * history[-11]:   # stalled (a limit or out of reach): give up early
+            return IKResult(False, q, pe, re, it)
         Jw = J * W
-        dq = W * (Jw.T @ np.linalg.solve(Jw @ Jw.T + damping ** 2 * np.eye(6), e))
+        dq = W * (Jw.T @ np.linalg.solve(Jw @ Jw.T + damp, e))
         n = float(np.max(np.abs(dq)))
         if n > max_step:
             dq *= max_step / n

@@ -2,17 +2,13 @@
 
 This is the only module of :mod:`planners` that imports ``pinocchio`` or ``coal``.
 
-The robot and the scene are two pinocchio models. The robot's collision meshes are replaced by their
-convex hulls (coal ``buildConvexRepresentation``), which is what makes a check cheap (~20 µs). The
-scene's articulation state is a configuration: the task joint takes the value ``s`` of the check, every
-other scene joint the value of ``scene_state``. Scene geometry is split into
-
-- *static* objects (everything the task joint does not move) in one coal broad-phase tree, built once;
-- *moving* objects (the subtree of the moving link except the handle) re-posed at each ``s``;
-- *handle* objects, which the gripper links may touch while grasping/opening (``allow_grasp_contact``).
-
-A check answers: robot self-collision (pinocchio's pair list, in C++), robot vs floor (a half-space at
-z = 0), robot vs static, moving and handle objects. Every call increments :attr:`PlanningWorld.checks`.
+The robot's collision meshes are replaced by their convex hulls (coal ``buildConvexRepresentation``).
+The scene URDF is loaded as a pinocchio model too and appended to the robot model, so the scene's
+articulation state is part of the configuration: the task joint takes the value ``s`` of the check, every
+other scene joint the value of ``scene_state``. A check covers robot self-collision (non-adjacent,
+non-ignored link pairs), robot vs floor (a half-space at z = 0) and robot vs every scene geometry, through
+pinocchio's broad-phase manager (coal dynamic AABB tree), all in C++ (~30k checks/s). Every call
+increments :attr:`PlanningWorld.checks`.
 """
 
 from __future__ import annotations
@@ -40,10 +36,6 @@ def _convexify(geom_model) -> None:
         if isinstance(g, coal.BVHModelBase):
             g.buildConvexRepresentation(False)
             go.geometry = g.convex
-
-
-def _transform(M) -> coal.Transform3s:
-    return coal.Transform3s(np.array(M.rotation), np.array(M.translation))
 
 
 class RobotKinematics:
@@ -127,13 +119,14 @@ class RobotKinematics:
         return bool(pin.computeCollisions(self.model, self.data, self.geom_model, self.geom_data,
                                           self.full_q(q), True))
 
-    def placements(self) -> list:
-        """Geometry placements (pinocchio SE3) of the last self-collision call."""
-        return self.geom_data.oMg
-
 
 class PlanningWorld:
     """Robot + scene for one task: collision checks as a function of ``(q, s)``.
+
+    The scene model (names prefixed with ``scene::``) is appended to the robot model, so one configuration
+    vector holds the robot joints and the scene joints; one geometry model holds the robot's convex hulls,
+    the scene geometry and the floor; pinocchio's broad-phase manager (coal dynamic AABB tree) answers a
+    check in C++. Gripper-handle pairs are switched off while ``allow_grasp_contact`` is true.
 
     Parameters
     ----------
@@ -144,6 +137,8 @@ class PlanningWorld:
     scene_state : values of other scene joints (default 0).
     """
 
+    PREFIX = "scene::"
+
     def __init__(self, robot: RobotKinematics, scene: SceneDescription, task_joint: str,
                  handle_geoms: set, scene_state: dict | None = None):
         self.robot = robot
@@ -151,81 +146,74 @@ class PlanningWorld:
         self.task_joint = task_joint
         path = str(scene.path)
         try:
-            self.smodel = pin.buildModelFromUrdf(path)
-            self.sgeom = pin.buildGeomFromUrdf(self.smodel, path, pin.GeometryType.COLLISION,
-                                               package_dirs=[str(scene.path.parent)])
+            smodel = pin.buildModelFromUrdf(path)
+            sgeom = pin.buildGeomFromUrdf(smodel, path, pin.GeometryType.COLLISION,
+                                          package_dirs=[str(scene.path.parent)])
         except Exception as e:
             raise SceneURDFError(f"{path}: pinocchio cannot load the scene URDF ({e})") from e
-        self.sdata = self.smodel.createData()
-        self.sgdata = pin.GeometryData(self.sgeom)
-        self.sq = pin.neutral(self.smodel)
+        self.smodel, self.sdata = smodel, smodel.createData()
+        # (link, index) of every scene geometry, in URDF order per link (matches the pure reading).
+        counter = defaultdict(int)
+        keys = []
+        for go in sgeom.geometryObjects:
+            link = smodel.frames[go.parentFrame].name
+            keys.append((link, counter[link]))
+            counter[link] += 1
+        pre = self.PREFIX
+        for i in range(1, len(smodel.frames)):
+            f = smodel.frames[i]
+            f.name = pre + f.name
+            smodel.frames[i] = f
+        for i in range(1, smodel.njoints):
+            smodel.names[i] = pre + smodel.names[i]
+        for go in sgeom.geometryObjects:
+            go.name = pre + go.name
+        nr = robot.geom_model.ngeoms
+        self.model, self.geom = pin.appendModel(robot.model, smodel, robot.geom_model.copy(), sgeom, 0,
+                                                pin.SE3.Identity())
+        floor = pin.GeometryObject("floor", 0, 0, pin.SE3.Identity(), coal.Halfspace(np.array([0.0, 0.0, 1.0]), 0.0))
+        fi = self.geom.addGeometryObject(floor)
+        for a in range(nr):
+            self.geom.addCollisionPair(pin.CollisionPair(a, fi))
+        self.data = self.model.createData()
+        self.gdata = pin.GeometryData(self.geom)
+        self.q = pin.neutral(self.model)
+        self.q[: robot.model.nq] = robot.q_full
+        self.sq_offset = robot.model.nq
         for name, value in (scene_state or {}).items():
             self._set_scene_joint(name, float(value))
-        if not self.smodel.existJointName(task_joint):
+        if not self.model.existJointName(pre + task_joint):
             raise SceneURDFError(f"{path}: pinocchio model has no joint {task_joint!r}")
-        self.task_idx = self.smodel.joints[self.smodel.getJointId(task_joint)].idx_q
-        self.s0 = float(self.sq[self.task_idx])
-        moving = set(scene.subtree_links(scene.joints[task_joint].child))
-        # Geometry objects in URDF order per link: match (link, index) of the pure reading.
-        counter = defaultdict(int)
-        pin.forwardKinematics(self.smodel, self.sdata, self.sq)
-        pin.updateGeometryPlacements(self.smodel, self.sdata, self.sgeom, self.sgdata)
-        self.static_mgr = coal.DynamicAABBTreeCollisionManager()
-        self._keep = []
-        self.floor = coal.CollisionObject(coal.Halfspace(np.array([0.0, 0.0, 1.0]), 0.0), coal.Transform3s())
-        self.static_mgr.registerObject(self.floor)
-        self.moving, self.handle = [], []   # (geometry index, CollisionObject)
-        for gi, go in enumerate(self.sgeom.geometryObjects):
-            link = self.smodel.frames[go.parentFrame].name
-            key = (link, counter[link])
-            counter[link] += 1
-            obj = coal.CollisionObject(go.geometry, _transform(self.sgdata.oMg[gi]))
-            obj.computeAABB()
-            self._keep.append(obj)
-            if key in handle_geoms:
-                self.handle.append((gi, obj))
-            elif link in moving:
-                self.moving.append((gi, obj))
-            else:
-                self.static_mgr.registerObject(obj)
-        self.static_mgr.setup()
-        grip = set(robot.spec.gripper_links)
-        self.robot_objs = [coal.CollisionObject(go.geometry, coal.Transform3s())
-                           for go in robot.geom_model.geometryObjects]
-        self.grip_mask = np.array([ln in grip for ln in robot.geom_links])
-        self.robot_mgr = coal.DynamicAABBTreeCollisionManager()
-        for o in self.robot_objs:
-            self.robot_mgr.registerObject(o)
-        self.robot_mgr.setup()
-        self._req = coal.CollisionRequest()
-        self._res = coal.CollisionResult()
-        self._cb = coal.CollisionCallBackDefault()
-        self._s_posed = None
+        self.task_idx = self.model.joints[self.model.getJointId(pre + task_joint)].idx_q
+        self.s0 = float(self.q[self.task_idx])
+        # Gripper-handle pairs, switched off while grasp contact is allowed.
+        grip = {i for i, ln in enumerate(robot.geom_links) if ln in set(robot.spec.gripper_links)}
+        handle = {nr + i for i, k in enumerate(keys) if k in handle_geoms}
+        self.grasp_pairs = [k for k, cp in enumerate(self.geom.collisionPairs)
+                            if (cp.first in grip and cp.second in handle) or (cp.second in grip and cp.first in handle)]
+        self.handle_geom_ids = sorted(handle)
+        self._allow = False
+        self.manager = pin.BroadPhaseManager_DynamicAABBTreeCollisionManager(self.model, self.geom, self.gdata)
         self.checks = 0
 
     def _set_scene_joint(self, name: str, value: float) -> None:
-        if not self.smodel.existJointName(name):
+        full = self.PREFIX + name
+        if not self.model.existJointName(full):
             raise SceneURDFError(f"{self.scene.path}: scene_state names joint {name!r}, which does not exist")
-        j = self.smodel.joints[self.smodel.getJointId(name)]
+        j = self.model.joints[self.model.getJointId(full)]
         if j.nq == 1:
-            self.sq[j.idx_q] = value
+            self.q[j.idx_q] = value
         elif j.nq == 2:   # continuous: (cos, sin)
-            self.sq[j.idx_q:j.idx_q + 2] = (np.cos(value), np.sin(value))
+            self.q[j.idx_q:j.idx_q + 2] = (np.cos(value), np.sin(value))
 
-    def _pose_moving(self, s: float) -> None:
-        if self._s_posed == s:
-            return
-        self.sq[self.task_idx] = s
-        pin.forwardKinematics(self.smodel, self.sdata, self.sq)
-        pin.updateGeometryPlacements(self.smodel, self.sdata, self.sgeom, self.sgdata)
-        for gi, obj in self.moving + self.handle:
-            obj.setTransform(_transform(self.sgdata.oMg[gi]))
-            obj.computeAABB()
-        self._s_posed = s
-
-    def _pair(self, a, b) -> bool:
-        self._res.clear()
-        return coal.collide(a, b, self._req, self._res) > 0
+    def _set_allow(self, allow: bool) -> None:
+        if allow != self._allow:
+            for k in self.grasp_pairs:
+                if allow:
+                    self.gdata.deactivateCollisionPair(k)
+                else:
+                    self.gdata.activateCollisionPair(k)
+            self._allow = allow
 
     def in_collision(self, q: np.ndarray, s: float | None = None, allow_grasp_contact: bool = False) -> bool:
         """True when the robot at ``q (dof,)`` touches itself, the floor or the scene with the task joint at ``s``.
@@ -234,41 +222,31 @@ class PlanningWorld:
         Joint limits are not checked here (see :meth:`within_limits`).
         """
         self.checks += 1
-        rb = self.robot
-        if rb.self_collision(q):
-            return True
-        for o, M in zip(self.robot_objs, rb.placements()):
-            o.setTransform(_transform(M))
-            o.computeAABB()
-        self.robot_mgr.update()
-        self._cb.init()
-        self.robot_mgr.collide(self.static_mgr, self._cb)
-        if self._cb.data.result.isCollision():
-            return True
-        self._pose_moving(self.s0 if s is None else float(s))
-        for o in self.robot_objs:
-            ao = o.getAABB()
-            for _, m in self.moving:
-                if ao.overlap(m.getAABB()) and self._pair(o, m):
-                    return True
-        for o, g in zip(self.robot_objs, self.grip_mask):
-            if allow_grasp_contact and g:
-                continue
-            ao = o.getAABB()
-            for _, m in self.handle:
-                if ao.overlap(m.getAABB()) and self._pair(o, m):
-                    return True
-        return False
+        self._set_allow(bool(allow_grasp_contact))
+        self.q[self.robot.idx_q] = q
+        self.q[self.task_idx] = self.s0 if s is None else float(s)
+        return bool(pin.computeCollisions(self.model, self.data, self.manager, self.q, True))
+
+    def colliding_pairs(self, q: np.ndarray, s: float | None = None, allow_grasp_contact: bool = False) -> list:
+        """Names of every colliding geometry pair at ``(q, s)`` (for reasons and debugging)."""
+        self._set_allow(bool(allow_grasp_contact))
+        self.q[self.robot.idx_q] = q
+        self.q[self.task_idx] = self.s0 if s is None else float(s)
+        pin.computeCollisions(self.model, self.data, self.geom, self.gdata, self.q, False)
+        out = []
+        for k, r in enumerate(self.gdata.collisionResults):
+            if r.isCollision() and self.gdata.activeCollisionPairs[k]:
+                cp = self.geom.collisionPairs[k]
+                out.append((self.geom.geometryObjects[cp.first].name, self.geom.geometryObjects[cp.second].name))
+        return out
 
     def within_limits(self, q: np.ndarray) -> bool:
         return bool(np.all(q >= self.robot.lower) and np.all(q <= self.robot.upper))
 
     def moving_link_pose(self, s: float) -> np.ndarray:
         """``(4, 4)`` world pose of the task joint's child link at joint value ``s``."""
-        sq = self.sq.copy()
-        sq[self.task_idx] = s
-        pin.framesForwardKinematics(self.smodel, self.sdata, sq)
-        fid = self.smodel.getFrameId(self.scene.joints[self.task_joint].child)
-        T = np.array(self.sdata.oMf[fid].homogeneous)
-        self._s_posed = None   # data was overwritten
-        return T
+        q = self.q.copy()
+        q[self.task_idx] = s
+        pin.framesForwardKinematics(self.model, self.data, q)
+        fid = self.model.getFrameId(self.PREFIX + self.scene.joints[self.task_joint].child)
+        return np.array(self.data.oMf[fid].homogeneous)
