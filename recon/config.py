@@ -35,6 +35,8 @@ class ReconConfig:
     """ICP correspondence radius (m)."""
     icp_iterations: int = 30
     """ICP iteration cap per candidate."""
+    icp_candidate_ratio: float = 2.0
+    """Only candidates whose unaligned score is within this factor of the best one are ICP-aligned."""
     coverage_distance: float = 0.02
     """A primitive surface sample is 'seen' when a scan point lies within this distance (m)."""
     min_face_coverage: float = 0.25

@@ -1,0 +1,195 @@
+"""Joints of the part tree from the articulated templates: type, axis, origin and limits (world frame).
+
+Drawer (prismatic): the axis is the outward normal of the parent's face the drawer sits in — among the
+parent's non-horizontal faces, those with the drawer's handle outside them (when it has one), the face
+the drawer reaches most closely. Travel = ``drawer_travel_fraction`` × the parent's depth along the axis,
+shortened if pulling the drawer out would run into other scan points.
+
+Door (revolute): same face; the hinge is the door's edge opposite its handle — a vertical hinge when
+the handle sits off to one side, a horizontal one at the bottom (fold-down) or top (fold-up) when it
+sits near the top or bottom edge. The hinge line lies on the door's outer face. The axis sign makes a
+positive angle swing the door outward. The limit is the largest angle (up to ``door_max_angle``) the
+door and its handle sweep without containing other scan points (its body's, a neighbour's, a wall's).
+
+Everything else is fixed (templates.py). lower = 0 is the scanned state.
+"""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from recon.config import ReconConfig
+from recon.model import JointEstimate, JointType
+from recon.part_tree import PartTree
+from recon.primitive import Primitive
+from recon.templates import template_for
+
+__all__ = ["estimate_joints", "opening_face", "hinge", "sweep_limit"]
+
+log = logging.getLogger(__name__)
+
+_UP = np.array([0.0, 0.0, 1.0])
+
+
+def opening_face(parent: Primitive, child: Primitive, handles: list[Primitive],
+                 config: ReconConfig) -> tuple[np.ndarray, float]:
+    """The parent's face a drawer/door sits in: (outward unit normal (3,), d) of that plane."""
+    planes = parent.planes(config.cylinder_side_faces)
+    side = [p for p in planes if abs(p.normal[2]) < 0.5] or list(planes)
+    corners = child.corners()
+    cand = []
+    for pl in side:
+        gap = float(np.max(corners @ pl.normal + pl.d))            # child's outermost reach past the plane
+        outside = all(float(h.center @ pl.normal + pl.d) > -config.theta_d for h in handles)
+        cand.append((0 if outside else 1, abs(gap), pl))
+    cand.sort(key=lambda t: (t[0], t[1]))
+    best = cand[0][2]
+    return best.normal.copy(), float(best.d)
+
+
+def _extent(prim: Primitive, direction: np.ndarray) -> tuple[float, float]:
+    s = prim.corners() @ direction
+    return float(s.min()), float(s.max())
+
+
+def hinge(parent: Primitive, door: Primitive, handles: list[Primitive], normal: np.ndarray,
+          config: ReconConfig) -> tuple[np.ndarray, np.ndarray, str]:
+    """(axis (3,), origin (3,), description) of a door's hinge; ``normal`` = the opening's outward normal."""
+    v = _UP - (_UP @ normal) * normal
+    v = v / np.linalg.norm(v) if np.linalg.norm(v) > 1e-6 else np.cross(normal, [1.0, 0.0, 0.0])
+    h = np.cross(v, normal)
+    c = door.center
+    lo_h, hi_h = _extent(door, h)
+    lo_v, hi_v = _extent(door, v)
+    _, front = _extent(door, normal)
+    half_h, half_v = max((hi_h - lo_h) / 2, 1e-6), max((hi_v - lo_v) / 2, 1e-6)
+    mid_h, mid_v = (hi_h + lo_h) / 2, (hi_v + lo_v) / 2
+    if handles:
+        hc = np.mean([p.center for p in handles], axis=0)
+        a_h, a_v = (hc @ h - mid_h) / half_h, (hc @ v - mid_v) / half_v
+        desc = "opposite its handle"
+    else:                       # no handle: hinge on the side nearer the parent face's edge
+        plo, phi = _extent(parent, h)
+        a_h = 1.0 if abs(lo_h - plo) <= abs(phi - hi_h) else -1.0
+        a_v = 0.0
+        desc = "at the body's nearer edge (no handle)"
+    if abs(a_v) > abs(a_h):     # handle near the top/bottom edge: horizontal hinge at the other edge
+        edge_v = lo_v if a_v > 0 else hi_v
+        origin = c + (edge_v - c @ v) * v + (front - c @ normal) * normal
+        axis = h.copy()
+        desc = ("horizontal hinge at the bottom, " if a_v > 0 else "horizontal hinge at the top, ") + desc
+    else:
+        edge_h = lo_h if a_h > 0 else hi_h
+        origin = c + (edge_h - c @ h) * h + (front - c @ normal) * normal
+        axis = v.copy()
+        desc = "vertical hinge " + desc
+    if np.cross(axis, c - origin) @ normal < 0:   # positive angle must swing the door outward
+        axis = -axis
+    return axis, origin, desc
+
+
+def sweep_limit(moving: list[Primitive], motion, values: np.ndarray, obstacles: np.ndarray,
+                config: ReconConfig, reach: float) -> float:
+    """The largest of ``values`` (increasing) reachable before the moving primitives — shrunk by
+    ``sweep_clearance`` and moved by ``motion(value) -> (4, 4)`` — contain ``sweep_min_points`` of
+    ``obstacles`` (n, 3). ``reach`` (m) bounds how far any moving point travels (to crop obstacles).
+    Returns 0.0 when the first value already collides."""
+    shrunk = [m.shrunk(config.sweep_clearance) for m in moving]
+    if len(obstacles):
+        lo = np.min([m.corners().min(axis=0) for m in moving], axis=0) - reach
+        hi = np.max([m.corners().max(axis=0) for m in moving], axis=0) + reach
+        obstacles = obstacles[np.all((obstacles >= lo) & (obstacles <= hi), axis=1)]
+    def collides(val) -> bool:
+        if not len(obstacles):
+            return False
+        M = motion(val)
+        return sum(int(m.transformed(M).contains(obstacles).sum()) for m in shrunk) >= config.sweep_min_points
+
+    # coarse pass over every 4th value, then the fine values just before the first coarse hit
+    values = np.asarray(values, dtype=np.float64)
+    coarse = list(range(3, len(values), 4))
+    if not coarse or coarse[-1] != len(values) - 1:
+        coarse.append(len(values) - 1)
+    lo_idx = 0
+    for idx in coarse:
+        if collides(values[idx]):
+            for k in range(lo_idx, idx + 1):
+                if collides(values[k]):
+                    return float(values[k - 1]) if k > 0 else 0.0
+        lo_idx = idx + 1
+    return float(values[-1])
+
+
+def _rotation_about(axis: np.ndarray, origin: np.ndarray, angle: float) -> np.ndarray:
+    M = np.eye(4)
+    R = Rotation.from_rotvec(axis * angle).as_matrix()
+    M[:3, :3], M[:3, 3] = R, origin - R @ origin
+    return M
+
+
+def _translation(axis: np.ndarray, s: float) -> np.ndarray:
+    M = np.eye(4)
+    M[:3, 3] = axis * s
+    return M
+
+
+def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str],
+                    prims: dict[int, Primitive], tree: PartTree, obstacles_for, config: ReconConfig,
+                    warn) -> tuple[JointEstimate, ...]:
+    """One joint per part of an object: the root's fixed joint to the world, then the tree's.
+
+    names : {part_id: URDF joint name}; labels : {part_id: label}; prims : refined primitives
+    obstacles_for(part_ids) -> (n, 3) scan points not belonging to those parts (for the sweeps)
+    warn(msg) : records a warning.
+    """
+    root = tree.root
+    joints = [JointEstimate(names[root], JointType.FIXED, None, root, _UP, prims[root].center)]
+    for c in tree.top_down():
+        p = tree.parent[c]
+        edge = tree.edges.get(c)
+        score = 0.0 if edge is None else edge.score
+        tpl = template_for(category, labels[c])
+        jtype = JointType.FIXED if tpl is None else tpl.joint
+        if jtype is not JointType.FIXED and edge is None:
+            warn(f"{names[c]}: part {c} ({labels[c]}) touches nothing; fixed to the root instead of "
+                 f"a {jtype.value} joint")
+            jtype = JointType.FIXED
+        handles = [k for k in tree.children(c) if labels[k] in ("handle", "knob")]
+        hprims = [prims[k] for k in handles]
+        if jtype is JointType.FIXED:
+            joints.append(JointEstimate(names[c], JointType.FIXED, p, c, _UP, prims[c].center,
+                                        contact_score=score))
+            continue
+        normal, _ = opening_face(prims[p], prims[c], hprims, config)
+        sub = tree.subtree(c)
+        moving = [prims[k] for k in sub]
+        obstacles = obstacles_for(sub)
+        if jtype is JointType.PRISMATIC:
+            lo, hi = _extent(prims[p], normal)
+            travel = config.drawer_travel_fraction * (hi - lo)
+            steps = np.append(np.arange(min(config.swing_step, travel / 4), travel, min(config.swing_step, travel / 4)), travel)
+            reach = sweep_limit(moving, lambda s: _translation(normal, s), steps, obstacles, config,
+                                reach=travel)
+            upper = reach if reach < travel - 1e-9 else travel
+            if upper < travel:
+                warn(f"{names[c]}: drawer travel limited to {upper:.3f} m (of {travel:.3f} m) by "
+                     "scan points in its way")
+            axis, origin = normal, prims[c].center
+        else:
+            axis, origin, desc = hinge(prims[p], prims[c], hprims, normal, config)
+            log.debug("%s: %s", names[c], desc)
+            angles = np.append(np.arange(config.swing_step, config.door_max_angle, config.swing_step),
+                               config.door_max_angle)
+            radius = max(float(np.max(np.linalg.norm(m.corners() - origin, axis=1))) for m in moving)
+            upper = sweep_limit(moving, lambda a: _rotation_about(axis, origin, a), angles, obstacles,
+                                config, reach=radius)
+            if upper < config.door_max_angle - 1e-9:
+                log.info("%s: door swing stops at %.0f deg (collision)", names[c], np.degrees(upper))
+        if upper <= 0.0:
+            warn(f"{names[c]}: the {labels[c]} cannot move without collision; upper limit 0")
+        joints.append(JointEstimate(names[c], jtype, p, c, axis, origin, 0.0, float(upper), score,
+                                    handles[0] if handles else None))
+    return tuple(joints)

@@ -1,0 +1,90 @@
+"""The object's part tree (Eq. 4): maximum spanning arborescence of the contact graph (Edmonds).
+
+Nodes are parts, edges the Eq. 1 contacts weighted by their contact score. The template prior scales
+an edge whose parent label the child's template does not expect by ``foreign_parent_penalty``. The
+base part (``ROOT_LABELS``, else the largest part) is the root: its in-edges are removed. Parts that
+touch nothing reachable from the root get a ``fallback_edge_weight`` edge from the root, so the tree
+always spans every part; those parts are returned so the caller can report them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import networkx as nx
+
+from recon.config import ReconConfig
+from recon.model import ContactEdge
+from recon.templates import ROOT_LABELS, template_for
+
+__all__ = ["PartTree", "choose_root", "part_tree"]
+
+
+@dataclass(frozen=True)
+class PartTree:
+    """root : part id; parent : {child id: parent id}; edges : {child id: the chosen ContactEdge or
+    None for a fallback attachment}; isolated : part ids attached by a fallback edge."""
+
+    root: int
+    parent: dict
+    edges: dict
+    isolated: tuple[int, ...]
+
+    def children(self, part_id: int) -> list[int]:
+        return sorted(c for c, p in self.parent.items() if p == part_id)
+
+    def top_down(self) -> list[int]:
+        """Non-root part ids in breadth-first order from the root (Alg. 1's queue order)."""
+        order, queue = [], list(self.children(self.root))
+        while queue:
+            c = queue.pop(0)
+            order.append(c)
+            queue.extend(self.children(c))
+        return order
+
+    def subtree(self, part_id: int) -> list[int]:
+        out, stack = [], [part_id]
+        while stack:
+            v = stack.pop()
+            out.append(v)
+            stack.extend(self.children(v))
+        return out
+
+
+def choose_root(labels: dict[int, str], volumes: dict[int, float]) -> int:
+    """The base part: the first of ROOT_LABELS present (largest if several), else the largest part."""
+    for root_label in ROOT_LABELS:
+        ids = [i for i, lab in labels.items() if lab == root_label]
+        if ids:
+            return max(ids, key=lambda i: (volumes[i], -i))
+    return max(labels, key=lambda i: (volumes[i], -i))
+
+
+def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
+              contacts: tuple[ContactEdge, ...], config: ReconConfig) -> PartTree:
+    """Solve Eq. 4 for one object. ``labels``/``volumes`` : {part_id: label / m^3}."""
+    root = choose_root(labels, volumes)
+    g = nx.DiGraph()
+    g.add_nodes_from(labels)
+    by_pair = {}
+    for e in contacts:
+        if e.child_part_id == root:
+            continue
+        tpl = template_for(category, labels[e.child_part_id])
+        prior = 1.0 if tpl is None or labels[e.parent_part_id] in tpl.parents else config.foreign_parent_penalty
+        w = e.score * prior * (1.0 - 0.01 * e.dist / max(config.theta_d, 1e-9))
+        g.add_edge(e.parent_part_id, e.child_part_id, weight=w)
+        by_pair[(e.parent_part_id, e.child_part_id)] = e
+    for v in labels:
+        if v != root and not g.has_edge(root, v):
+            g.add_edge(root, v, weight=config.fallback_edge_weight)
+    if len(labels) == 1:
+        return PartTree(root, {}, {}, ())
+    arb = nx.maximum_spanning_arborescence(g, attr="weight", preserve_attrs=True)
+    parent, edges, isolated = {}, {}, []
+    for p, c in arb.edges():
+        parent[c] = p
+        edges[c] = by_pair.get((p, c))
+        if edges[c] is None:
+            isolated.append(c)
+    return PartTree(root, parent, edges, tuple(sorted(isolated)))

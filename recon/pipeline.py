@@ -1,0 +1,169 @@
+"""``reconstruct``: the whole pipeline from a labelled scan to a :class:`Reconstruction`.
+
+Stages per object: Eq. 3 fit of every part -> planes Π -> Eq. 1 contacts -> Eq. 4 tree -> Alg. 1
+refinement; then, for the scene: support relations and upright/resting poses; then joints (they need
+the final poses and the other objects' points for their limits); then object frames and relations.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from recon.config import ReconConfig
+from recon.contacts import contact_edges
+from recon.fitting import fit_part
+from recon.joints import estimate_joints
+from recon.model import JointType, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
+from recon.part_tree import part_tree
+from recon.primitive import Primitive
+from recon.refinement import refine_parts
+from recon.scan import Scan, read_scan
+from recon.scene_graph import (object_frame, proximal_relations, support_relations,
+                               upright_correction)
+from scenes.naming import joint_name, link_name, object_name
+
+__all__ = ["reconstruct", "reconstruct_scan"]
+
+log = logging.getLogger(__name__)
+
+Progress = Callable[[str, int, int], None]
+"""progress(message, done, total): called as objects are processed."""
+
+
+def reconstruct(scan_path, labels_path, *, config: ReconConfig = ReconConfig(), level_floor: bool = False,
+                seed: int = 0, progress: Progress | None = None) -> Reconstruction:
+    """Reconstruct the scene of ``scan_path`` (.ply / .npz) labelled by ``labels_path`` (labels.json).
+
+    level_floor : find the floor and the up direction first (scans in a camera frame).
+    seed : every random choice (sampling, RANSAC) derives from it; same inputs + seed = same output.
+    Raises :class:`recon.ScanError` on unusable input; per-part problems go to ``.warnings``.
+    """
+    return reconstruct_scan(read_scan(scan_path, labels_path, config), config=config,
+                            level_floor=level_floor, seed=seed, progress=progress)
+
+
+def _part_seed(seed: int, part_id: int) -> int:
+    return (int(seed) * 1_000_003 + int(part_id) * 7919) % (2**31)
+
+
+def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_floor: bool = False,
+                     seed: int = 0, progress: Progress | None = None) -> Reconstruction:
+    """:func:`reconstruct` on an already read :class:`recon.scan.Scan`."""
+    t_start = time.perf_counter()
+    timings: dict[str, float] = {}
+    warnings = list(scan.warnings)
+
+    def warn(msg: str):
+        log.warning(msg)
+        warnings.append(msg)
+
+    if level_floor:
+        from recon.leveling import floor_transform
+
+        T, tilt = floor_transform(scan, config, seed)
+        scan = scan.transformed(T)
+        log.info("levelled the scan: up direction was %.1f deg off", np.degrees(tilt))
+        timings["level_floor"] = time.perf_counter() - t_start
+
+    n_obj = len(scan.objects)
+    staged = []   # (obj, labels, fits, contacts, tree, prims)
+    t0 = time.perf_counter()
+    for k, obj in enumerate(scan.objects):
+        if progress:
+            progress(f"fitting {object_name(obj.category, obj.id)} ({len(obj.parts)} parts)", k, n_obj)
+        labels = {p.part_id: p.label for p in obj.parts}
+        fits = {}
+        for p in obj.parts:
+            name, prim, score, table = fit_part(p.points, config, seed=_part_seed(seed, p.part_id),
+                                                normals=p.normals)
+            fits[p.part_id] = (prim, score, table, len(p.points))
+            log.debug("object %d part %d (%s): %s, score %.4f", obj.id, p.part_id, p.label, name, score.total)
+        prims = {i: f[0] for i, f in fits.items()}
+        planes = {i: prims[i].planes(config.cylinder_side_faces) for i in prims}
+        contacts = contact_edges(planes, config)
+        tree = part_tree(obj.category, labels, {i: prims[i].volume for i in prims}, contacts, config)
+        for i in tree.isolated:
+            warn(f"{link_name(obj.category, obj.id, labels[i], i)}: part {i} ({labels[i]}) touches no "
+                 f"other part of object {obj.id}; fixed to the root part {tree.root}")
+        prims = refine_parts(prims, tree, config)
+        staged.append((obj, labels, fits, contacts, tree, prims))
+    timings["parts"] = time.perf_counter() - t0
+
+    # scene: support and upright poses (floor-supported objects first, then what stands on them)
+    t0 = time.perf_counter()
+    by_id = {s[0].id: s for s in staged}
+    for s in staged:
+        obj, _, _, _, tree, prims = s
+        R = upright_correction(prims[tree.root], config)
+        if not np.allclose(R, np.eye(3)):
+            c = np.concatenate([p.corners() for p in prims.values()])
+            pivot = np.array([*c[:, :2].mean(axis=0), c[:, 2].min()])
+            M = np.eye(4)
+            M[:3, :3], M[:3, 3] = R, pivot - R @ pivot
+            for i in prims:
+                prims[i] = prims[i].transformed(M)
+    support = support_relations({i: list(s[5].values()) for i, s in by_id.items()}, config)
+    order = sorted(by_id, key=lambda i: (support[i][0] is not None, i))
+    for i in order:
+        sup, _ = support[i]
+        prims = by_id[i][5]
+        top = 0.0 if sup is None else max(float(p.corners()[:, 2].max()) for p in by_id[sup][5].values())
+        bottom = min(float(p.corners()[:, 2].min()) for p in prims.values())
+        if bottom > config.support_distance and sup is None:
+            warn(f"{object_name(by_id[i][0].category, i)}: floats {bottom:.3f} m above the floor with "
+                 "nothing under it; left where it was scanned")
+            continue
+        M = np.eye(4)
+        M[2, 3] = top - bottom
+        for k in prims:
+            prims[k] = prims[k].transformed(M)
+    timings["support"] = time.perf_counter() - t0
+
+    # joints (limits sweep against every other scan point)
+    t0 = time.perf_counter()
+    all_pts = scan.points
+    all_part = scan.part_id
+
+    def obstacles_for(part_ids):
+        return all_pts[~np.isin(all_part, list(part_ids))]
+
+    objects = []
+    for k, (obj, labels, fits, contacts, tree, prims) in enumerate(staged):
+        if progress:
+            progress(f"joints of {object_name(obj.category, obj.id)}", k, n_obj)
+        names = {i: joint_name(obj.category, obj.id, labels[i], i) for i in labels}
+        joints = estimate_joints(obj.category, names, labels, prims, tree, obstacles_for, config, warn)
+        parts = tuple(
+            PartFit(i, labels[i], link_name(obj.category, obj.id, labels[i], i), prims[i],
+                    float(fits[i][1].total), dict(fits[i][2]), int(fits[i][3]),
+                    prims[i].planes(config.cylinder_side_faces))
+            for i in labels)
+        front = _front(joints, prims)
+        T_wo, size = object_frame([prims[tree.root]] + [p for i, p in prims.items() if i != tree.root], front)
+        objects.append(ObjectReconstruction(
+            obj.id, obj.category, object_name(obj.category, obj.id), tree.root, parts, contacts, joints,
+            tree.isolated, T_wo, size, support[obj.id][0]))
+    timings["joints"] = time.perf_counter() - t0
+    prox = proximal_relations({o.id: list(o.primitives().values()) for o in objects}, config)
+    graph = SceneGraph(tuple((o.id, o.supported_by) for o in objects), prox)
+    timings["total"] = time.perf_counter() - t_start
+    if progress:
+        progress("done", n_obj, n_obj)
+    return Reconstruction(tuple(objects), graph, tuple(warnings), config, int(seed), timings)
+
+
+def _front(joints, prims: dict[int, Primitive]) -> np.ndarray | None:
+    """The object's front: a drawer's axis, else the outward normal of a door, else None."""
+    for j in joints:
+        if j.type is JointType.PRISMATIC:
+            return j.axis
+    for j in joints:
+        if j.type is JointType.REVOLUTE:
+            n = np.cross(j.axis, prims[j.child_part_id].center - j.origin)
+            if np.linalg.norm(n) > 1e-9:
+                return n / np.linalg.norm(n)
+    return None

@@ -1,0 +1,112 @@
+"""``scene.urdf`` from a :class:`Reconstruction` (built with yourdfpy's schema dataclasses).
+
+Shape (docs/contracts.md "Scene URDF shape"): root link ``world``; each object's root part fixed to
+``world``; every other part hangs from its tree parent by its estimated joint; handles are their own
+links fixed to their drawer/door.
+
+Frames: every link frame is world-aligned (identity rotation in the world at joint value 0) and sits
+at the joint's origin — on the axis for a movable joint, at the part's centre for a fixed one — so a
+URDF ``<axis>`` equals the world axis of graph.json and a joint origin is a pure translation. The
+primitive sits in its link at ``T_link_part``. Mass = ``density`` × primitive volume; inertia is the
+closed form of the primitive, rotated into the link frame. Parts that move (drawers, doors and what
+hangs from them) get collision shapes shrunk by ``collision_clearance`` so they do not start in
+contact with their body or siblings.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import yourdfpy
+
+from recon.model import JointType, Reconstruction
+from recon.primitive import Primitive, PrimitiveKind
+from scenes.naming import WORLD_LINK
+
+__all__ = ["urdf_robot", "urdf_string", "link_frames"]
+
+
+def _translation(p: np.ndarray) -> np.ndarray:
+    T = np.eye(4)
+    T[:3, 3] = p
+    return T
+
+
+def _geometry(prim: Primitive) -> yourdfpy.Geometry:
+    if prim.kind is PrimitiveKind.BOX:
+        return yourdfpy.Geometry(box=yourdfpy.Box(size=np.asarray(prim.size, float)))
+    if prim.kind is PrimitiveKind.CYLINDER:
+        return yourdfpy.Geometry(cylinder=yourdfpy.Cylinder(radius=prim.radius, length=prim.length))
+    return yourdfpy.Geometry(sphere=yourdfpy.Sphere(radius=prim.size[0] / 2.0))
+
+
+def link_frames(rec: Reconstruction) -> dict[str, np.ndarray]:
+    """{link name: T_world_link (4, 4)} of every part link (joint value 0)."""
+    out = {}
+    for obj in rec.objects:
+        for j in obj.joints:
+            link = obj.part(j.child_part_id).link
+            out[link] = _translation(j.origin if j.type is not JointType.FIXED else obj.part(j.child_part_id).primitive.center)
+    return out
+
+
+def urdf_robot(rec: Reconstruction, name: str = "scene") -> yourdfpy.Robot:
+    """The scene as a yourdfpy ``Robot`` (see the module docstring for frames and inertials)."""
+    cfg = rec.config
+    frames = link_frames(rec)
+    links = [yourdfpy.Link(name=WORLD_LINK)]
+    joints = []
+    for obj in rec.objects:
+        moving = set()
+        parent_of = {j.child_part_id: j.parent_part_id for j in obj.joints}
+        for j in obj.joints:
+            if j.type is not JointType.FIXED:
+                moving.add(j.child_part_id)
+        changed = True
+        while changed:   # everything hanging from a moving part moves too
+            changed = False
+            for c, p in parent_of.items():
+                if p in moving and c not in moving:
+                    moving.add(c)
+                    changed = True
+        for part in obj.parts:
+            T_wl = frames[part.link]
+            T_lp = np.linalg.inv(T_wl) @ part.primitive.T_world_part
+            mass = cfg.density * part.primitive.volume
+            inertia = part.primitive.inertia(mass)      # about the centre, in the part frame = T_lp
+            coll_prim = part.primitive.shrunk(cfg.collision_clearance) if part.part_id in moving else part.primitive
+            links.append(yourdfpy.Link(
+                name=part.link,
+                inertial=yourdfpy.Inertial(origin=T_lp, mass=float(mass), inertia=inertia),
+                visuals=[yourdfpy.Visual(name=f"{part.link}_visual", origin=T_lp,
+                                         geometry=_geometry(part.primitive))],
+                collisions=[yourdfpy.Collision(name=f"{part.link}_collision", origin=T_lp,
+                                               geometry=_geometry(coll_prim))]))
+        for j in obj.joints:
+            child = obj.part(j.child_part_id).link
+            if j.parent_part_id is None:
+                parent, T_wp = WORLD_LINK, np.eye(4)
+            else:
+                parent = obj.part(j.parent_part_id).link
+                T_wp = frames[parent]
+            origin = np.linalg.inv(T_wp) @ frames[child]
+            kw = {}
+            if j.type is not JointType.FIXED:
+                kw = dict(axis=np.asarray(j.axis, float),
+                          limit=yourdfpy.Limit(effort=cfg.joint_effort, velocity=cfg.joint_velocity,
+                                               lower=float(j.lower), upper=float(j.upper)),
+                          dynamics=yourdfpy.Dynamics(damping=cfg.joint_damping, friction=cfg.joint_friction))
+            else:
+                kw = dict(dynamics=yourdfpy.Dynamics(damping=0.0, friction=0.0))
+            joints.append(yourdfpy.Joint(name=j.name, type=j.type.value, parent=parent, child=child,
+                                         origin=origin, **kw))
+    return yourdfpy.Robot(name=name, links=links, joints=joints)
+
+
+def urdf_string(rec: Reconstruction, name: str = "scene") -> str:
+    """The scene.urdf text."""
+    from lxml import etree
+
+    urdf = yourdfpy.URDF(robot=urdf_robot(rec, name), build_scene_graph=False, load_meshes=False)
+    # pretty-printed: PyBullet's tinyxml2 fails to parse yourdfpy's one-line output of a large scene
+    return etree.tostring(urdf.write_xml(), xml_declaration=True, encoding="UTF-8",
+                          pretty_print=True).decode()
