@@ -1,0 +1,18 @@
+"""partscene ``scenes``: ground-truth articulated rooms and a virtual RGB-D scanner.
+
+>>> from scenes import make_scene
+>>> made = make_scene("kitchen", seed=0, preset="clean", out="out/kitchen")   # doctest: +SKIP
+"""
+
+from .api import MadeScene, list_scenes, make_scene
+from .builtin import SCENES, build_scene
+from .errors import PlacementError, ScanError, ScenesError, SceneSpecError
+from .model import ArticulatedObject, Joint, JointType, Part, Scene, Shape, ShapeType, Wall
+from .scanner import PRESETS, Scan, ScanParams, scan_scene
+from .truth_json import read_truth_json, write_truth_json
+from .truth_urdf import urdf_from_scene, write_truth_urdf
+
+__all__ = ["make_scene", "MadeScene", "list_scenes", "build_scene", "SCENES", "scan_scene", "Scan",
+           "ScanParams", "PRESETS", "Scene", "ArticulatedObject", "Part", "Joint", "JointType", "Shape",
+           "ShapeType", "Wall", "write_truth_urdf", "urdf_from_scene", "write_truth_json", "read_truth_json",
+           "ScenesError", "SceneSpecError", "PlacementError", "ScanError"]

@@ -1,0 +1,265 @@
+"""Ground-truth artifacts: shapes, parts, joints, articulated objects, walls and scenes.
+
+All are frozen dataclasses; arrays are float64. Frames (see ``docs/contracts.md``):
+
+* object frame: origin on the floor (or the supporting surface) at the footprint centre, x = the
+  outward front normal, z up;
+* part frame ``T_object_part``: pose of a part in its object frame at joint value 0 (closed); for a
+  movable part the frame origin lies on the joint axis (on the hinge line for a door);
+* shape frame ``T_part_shape``: a box is centred on its frame, a cylinder is centred with its axis
+  along local z.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from enum import Enum
+
+import numpy as np
+
+from .naming import joint_name, link_name, object_name
+
+__all__ = ["ShapeType", "JointType", "Shape", "Part", "Joint", "ArticulatedObject", "Wall", "Scene"]
+
+
+class ShapeType(str, Enum):
+    BOX = "box"
+    CYLINDER = "cylinder"
+
+
+class JointType(str, Enum):
+    FIXED = "fixed"
+    PRISMATIC = "prismatic"
+    REVOLUTE = "revolute"
+
+
+def _arr(x, shape) -> np.ndarray:
+    a = np.array(x, dtype=np.float64)
+    if a.shape != shape:
+        raise ValueError(f"expected shape {shape}, got {a.shape}")
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class Shape:
+    """A primitive solid of a part.
+
+    ``size``: box (3,) full extents in metres; cylinder (3,) = (2r, 2r, length).
+    ``T_part_shape``: (4, 4) pose of the shape in the part frame.
+    """
+
+    type: ShapeType
+    size: np.ndarray
+    T_part_shape: np.ndarray
+
+    @staticmethod
+    def box(size, T_part_shape) -> "Shape":
+        return Shape(ShapeType.BOX, _arr(size, (3,)), _arr(T_part_shape, (4, 4)))
+
+    @staticmethod
+    def cylinder(radius: float, length: float, T_part_shape) -> "Shape":
+        return Shape(ShapeType.CYLINDER, np.array([2 * radius, 2 * radius, length], float),
+                     _arr(T_part_shape, (4, 4)))
+
+    @property
+    def radius(self) -> float:
+        return float(self.size[0] / 2)
+
+    @property
+    def length(self) -> float:
+        return float(self.size[2])
+
+    @property
+    def volume(self) -> float:
+        """m^3."""
+        if self.type is ShapeType.BOX:
+            return float(np.prod(self.size))
+        return float(np.pi * self.radius ** 2 * self.length)
+
+    def corners(self) -> np.ndarray:
+        """(8, 3) corners of the shape's bounding box, in the part frame (a cylinder's box is tight)."""
+        h = self.size / 2
+        c = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], float) * h
+        return c @ self.T_part_shape[:3, :3].T + self.T_part_shape[:3, 3]
+
+    def moved(self, T_new_part: np.ndarray) -> "Shape":
+        """The same shape expressed in another frame: ``T_new_shape = T_new_part @ T_part_shape``."""
+        return Shape(self.type, self.size.copy(), T_new_part @ self.T_part_shape)
+
+    def isclose(self, other: "Shape", atol: float = 1e-9) -> bool:
+        return (self.type == other.type and np.allclose(self.size, other.size, atol=atol)
+                and np.allclose(self.T_part_shape, other.T_part_shape, atol=atol))
+
+
+@dataclass(frozen=True, eq=False)
+class Part:
+    """A rigid part: semantic ``label`` (DESIGN vocabulary), shapes, closed pose ``T_object_part`` (4, 4)."""
+
+    id: int
+    label: str
+    T_object_part: np.ndarray
+    shapes: tuple[Shape, ...]
+    density: float  # kg/m^3, used for the URDF inertial
+
+    def isclose(self, other: "Part", atol: float = 1e-9) -> bool:
+        return (self.id == other.id and self.label == other.label
+                and np.allclose(self.T_object_part, other.T_object_part, atol=atol)
+                and len(self.shapes) == len(other.shapes)
+                and all(a.isclose(b, atol) for a, b in zip(self.shapes, other.shapes)))
+
+
+@dataclass(frozen=True, eq=False)
+class Joint:
+    """The joint whose child is part ``child``; axis and origin are in the OBJECT frame.
+
+    ``axis`` (3,) unit, positive value opens; ``origin`` (3,) a point on the axis (hinge line for a
+    door), metres. ``lower``/``upper`` metres (prismatic) or radians (revolute); 0 = closed.
+    ``effort`` N or N m, ``velocity`` m/s or rad/s, ``damping`` N s/m or N m s/rad, ``friction`` N or N m.
+    """
+
+    type: JointType
+    parent: int | None  # parent part id; None = the world (object root)
+    child: int
+    axis: np.ndarray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0]))
+    origin: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    lower: float = 0.0
+    upper: float = 0.0
+    handle: int | None = None
+    effort: float = 100.0
+    velocity: float = 1.0
+    damping: float = 0.0
+    friction: float = 0.0
+
+    @property
+    def movable(self) -> bool:
+        return self.type is not JointType.FIXED
+
+
+@dataclass(frozen=True, eq=False)
+class ArticulatedObject:
+    """An object: parts (the first is the root), the part tree as joints, and true contact edges.
+
+    ``T_world_object`` (4, 4); ``size`` (3,) axis-aligned extent of the closed object in its frame;
+    ``contacts``: undirected part-id pairs (a < b).
+    """
+
+    id: int
+    category: str
+    parts: tuple[Part, ...]
+    joints: tuple[Joint, ...]
+    contacts: tuple[tuple[int, int], ...]
+    T_world_object: np.ndarray = field(default_factory=lambda: np.eye(4))
+    supported_by: int | None = None
+
+    # ------------------------------------------------------------------ lookup
+    @property
+    def name(self) -> str:
+        return object_name(self.category, self.id)
+
+    @property
+    def root(self) -> Part:
+        return self.parts[0]
+
+    def part(self, part_id: int) -> Part:
+        for p in self.parts:
+            if p.id == part_id:
+                return p
+        raise KeyError(f"{self.name}: no part {part_id}")
+
+    def joint_of(self, part_id: int) -> Joint:
+        for j in self.joints:
+            if j.child == part_id:
+                return j
+        raise KeyError(f"{self.name}: no joint with child part {part_id}")
+
+    def link(self, part: Part) -> str:
+        return link_name(self.category, self.id, part.label, part.id)
+
+    def joint_name(self, joint: Joint) -> str:
+        child = self.part(joint.child)
+        return joint_name(self.category, self.id, child.label, child.id)
+
+    # ------------------------------------------------------------------ geometry
+    def bounds(self) -> np.ndarray:
+        """(2, 3) min/max of all shapes in the object frame, closed state."""
+        pts = np.vstack([s.corners() @ p.T_object_part[:3, :3].T + p.T_object_part[:3, 3]
+                         for p in self.parts for s in p.shapes])
+        return np.array([pts.min(0), pts.max(0)])
+
+    @property
+    def size(self) -> np.ndarray:
+        b = self.bounds()
+        return b[1] - b[0]
+
+    def T_object_part_at(self, part_id: int, q: dict[int, float] | None = None) -> np.ndarray:
+        """(4, 4) pose of ``part_id`` in the object frame with joint values ``q`` {child part id: value}."""
+        q = q or {}
+        j = self.joint_of(part_id)
+        if j.parent is None:
+            return self.part(part_id).T_object_part.copy()
+        T_parent = self.T_object_part_at(j.parent, q)
+        T_closed_parent = self.part(j.parent).T_object_part
+        T_obj_child = self.part(part_id).T_object_part
+        # motion of this joint, about/along its object-frame axis (axis fixed to the parent)
+        M = _joint_motion(j, q.get(part_id, 0.0))
+        return T_parent @ np.linalg.inv(T_closed_parent) @ M @ T_obj_child
+
+    # ------------------------------------------------------------------ copies
+    def renumbered(self, object_id: int, first_part_id: int) -> "ArticulatedObject":
+        """A copy with object id ``object_id`` and parts numbered from ``first_part_id`` in order."""
+        m = {p.id: first_part_id + i for i, p in enumerate(self.parts)}
+        parts = tuple(dataclasses.replace(p, id=m[p.id]) for p in self.parts)
+        joints = tuple(dataclasses.replace(j, parent=None if j.parent is None else m[j.parent],
+                                           child=m[j.child],
+                                           handle=None if j.handle is None else m[j.handle])
+                       for j in self.joints)
+        contacts = tuple(sorted(tuple(sorted((m[a], m[b]))) for a, b in self.contacts))
+        return dataclasses.replace(self, id=object_id, parts=parts, joints=joints, contacts=contacts)
+
+    def placed(self, T_world_object: np.ndarray, supported_by: int | None = None) -> "ArticulatedObject":
+        return dataclasses.replace(self, T_world_object=np.array(T_world_object, float),
+                                   supported_by=supported_by)
+
+
+def _joint_motion(j: Joint, value: float) -> np.ndarray:
+    """(4, 4) rigid motion in the object frame of joint ``j`` at ``value``."""
+    M = np.eye(4)
+    if j.type is JointType.PRISMATIC:
+        M[:3, 3] = j.axis * value
+    elif j.type is JointType.REVOLUTE:
+        a = j.axis / np.linalg.norm(j.axis)
+        K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+        R = np.eye(3) + np.sin(value) * K + (1 - np.cos(value)) * K @ K
+        M[:3, :3] = R
+        M[:3, 3] = j.origin - R @ j.origin
+    return M
+
+
+@dataclass(frozen=True, eq=False)
+class Wall:
+    """A fixed box wall: ``size`` (3,) metres, ``T_world_wall`` (4, 4) at the box centre."""
+
+    name: str
+    size: np.ndarray
+    T_world_wall: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class Scene:
+    """A room: objects placed in the world, walls, and the floor at z = 0.
+
+    ``room_size`` (2,) the inner floor extent in x and y (metres), centred on the world origin.
+    """
+
+    name: str
+    seed: int
+    objects: tuple[ArticulatedObject, ...]
+    walls: tuple[Wall, ...] = ()
+    room_size: np.ndarray = field(default_factory=lambda: np.array([5.0, 4.0]))
+
+    def object(self, object_id: int) -> ArticulatedObject:
+        for o in self.objects:
+            if o.id == object_id:
+                return o
+        raise KeyError(f"scene {self.name}: no object {object_id}")
