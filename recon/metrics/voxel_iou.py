@@ -6,12 +6,20 @@ aligned so that the true object spans exactly ``resolution`` voxels along its lo
 sticks out keeps its outside voxels (they count in the union), up to ``LATTICE_HALF_WIDTH`` unit boxes
 from the centre, beyond which anything is so wrong that the IoU is ~0 anyway.
 
-Occupancy is *solid* (filled, not only the surface): a voxel is occupied when it overlaps the interior
-of one of the side's primitives, i.e. its centre lies inside the primitive grown by (just under) half a
-voxel along the primitive's own axes. That is exact for boxes aligned with the lattice (a box whose faces
-lie on voxel faces occupies exactly the voxels inside it) and slightly under-generous for rotated ones.
-Thin parts (cabinet panels, drawer walls thinner than a voxel) therefore still occupy one voxel layer on
-both sides, instead of vanishing or flickering with their sub-voxel position.
+Occupancy is *solid* (filled, not only the surface), in two steps:
+
+1. a voxel is occupied when it overlaps the interior of one of the side's primitives, i.e. its centre
+   lies inside the primitive grown by (just under) half a voxel along the primitive's own axes. That is
+   exact for boxes aligned with the lattice (a box whose faces lie on voxel faces occupies exactly the
+   voxels inside it) and slightly under-generous for rotated ones. Thin parts (cabinet panels, drawer
+   walls thinner than a voxel) therefore still occupy a voxel layer instead of vanishing;
+2. empty voxels enclosed by occupied ones (not 6-connected to the outside) are filled
+   (``scipy.ndimage.binary_fill_holes``), as a solid voxelizer does with a closed mesh: the inside of a
+   closed cabinet (doors and drawers shut) is part of its solid, the space under a table is not.
+
+Why step 2: without it a hollow cabinet is a few one-voxel panel layers (18 mm panels, 20-60 mm voxels),
+and a sub-voxel shift of a perfect estimate flips whole layers (measured: IoU 0.54 for an exact
+template placed 5 mm off), so IoU would measure voxel aliasing instead of shape.
 
     IoU = |occ(truth) & occ(estimate)| / |occ(truth) | occ(estimate)|
 """
@@ -21,6 +29,7 @@ from __future__ import annotations
 from typing import Sequence
 
 import numpy as np
+from scipy import ndimage
 
 from recon.metrics.errors import EstimateError
 from recon.metrics.solids import grown
@@ -43,6 +52,7 @@ def occupied_voxels(primitives: Sequence[Primitive], box: UnitBox,
     """Integer indices of the lattice voxels overlapped by the union of ``primitives``.
 
     Voxel ``(i, j, k)`` has its centre at ``-0.5 + ((i, j, k) + 0.5) / resolution`` in the unit box.
+    Enclosed empty voxels are filled (module docstring).
     returns : (m, 3) int64, unique rows, sorted lexicographically
     """
     if resolution < 1:
@@ -62,9 +72,17 @@ def occupied_voxels(primitives: Sequence[Primitive], box: UnitBox,
         centres_unit = -0.5 + (idx + 0.5) * h
         inside = grown(prim, grow_m).contains(box.to_world(centres_unit))
         chunks.append(idx[inside])
-    if not chunks:
+    if not chunks or not any(len(c) for c in chunks):
         return np.zeros((0, 3), dtype=np.int64)
-    return np.unique(np.concatenate(chunks, axis=0), axis=0)
+    return _filled(np.unique(np.concatenate(chunks, axis=0), axis=0))
+
+
+def _filled(voxels: np.ndarray) -> np.ndarray:
+    """Occupied voxels plus the empty voxels they enclose. voxels : (m, 3) int -> (m', 3) int, sorted."""
+    lo = voxels.min(axis=0) - 1
+    dense = np.zeros(voxels.max(axis=0) - lo + 2, dtype=bool)
+    dense[tuple((voxels - lo).T)] = True
+    return np.argwhere(ndimage.binary_fill_holes(dense)) + lo
 
 
 def _keys(voxels: np.ndarray) -> np.ndarray:

@@ -126,21 +126,40 @@ def test_iou_of_a_box_shifted_by_whole_voxels_is_the_closed_form():
     assert object_iou(truth, half, b) == pytest.approx(0.5, abs=1e-12)
 
 
-def test_iou_is_solid_a_hollow_shell_is_not_a_full_box():
-    # six 1-voxel-thick panels on the lattice enclosing a 1 m cube: 32^3 - 30^3 voxels of 32^3
+def _shell(open_face: bool) -> list:
+    """Six (or five, front +x open) 1-voxel-thick panels on the lattice around a 1 m cube."""
     h = 1.0 / 32
     panels = []
     for axis in range(3):
         for sign in (-1, 1):
+            if open_face and axis == 0 and sign == 1:
+                continue
             size = np.ones(3)
             size[axis] = h
             xyz = np.zeros(3)
             xyz[axis] = sign * (0.5 - h / 2)
             panels.append(box(size, xyz))
+    return panels
+
+
+def test_iou_is_solid_a_closed_shell_is_filled_an_open_one_is_not():
     solid = [box([1.0, 1.0, 1.0])]
     b = unit_box_from_truth(solid, np.eye(4))
-    assert len(occupied_voxels(panels, b)) == 32 ** 3 - 30 ** 3
-    assert object_iou(solid, panels, b) == pytest.approx((32 ** 3 - 30 ** 3) / 32 ** 3)
+    assert object_iou(solid, _shell(open_face=False), b) == 1.0        # the enclosed inside is filled
+    # five panels, front open: 32^3 - 30^2 * 31 voxels, nothing enclosed
+    assert len(occupied_voxels(_shell(open_face=True), b)) == 32 ** 3 - 30 * 30 * 31
+    assert object_iou(solid, _shell(open_face=True), b) == pytest.approx((32 ** 3 - 30 * 30 * 31) / 32 ** 3)
+
+
+def test_iou_of_a_closed_thin_walled_box_is_stable_under_sub_voxel_shifts():
+    t = 0.018
+    walls = lambda dx: [box([t, 0.8, 0.8], (dx + s * (0.3 - t / 2), 0, 0)) for s in (-1, 1)] + \
+                       [box([0.6, t, 0.8], (dx, s * (0.4 - t / 2), 0)) for s in (-1, 1)] + \
+                       [box([0.6, 0.8, t], (dx, 0, s * (0.4 - t / 2))) for s in (-1, 1)]
+    truth = walls(0.0)
+    b = unit_box_from_truth(truth, np.eye(4))
+    for dx in (0.002, 0.005, 0.01):
+        assert object_iou(truth, walls(dx), b) > 0.9
 
 
 def test_thin_panel_occupies_a_voxel_layer_wherever_it_sits():
