@@ -40,6 +40,7 @@ class HandleGrasp:
     Attributes
     ----------
     moving_link : link moved by the joint.
+    grasp_link : link that carries the grasped bar (the handle link, or the moving link itself).
     handle_geoms : frozenset of (link, collision index) the gripper may touch.
     T_link_grasps : tuple of (4, 4) candidate grasp frames in the moving link's frame.
     bar_width : float, metres, extent of the bar across the finger closing direction (0 if unknown).
@@ -48,6 +49,7 @@ class HandleGrasp:
     """
 
     moving_link: str
+    grasp_link: str
     handle_geoms: frozenset
     T_link_grasps: tuple
     bar_width: float
@@ -70,13 +72,14 @@ def outward_direction(scene: SceneDescription, joint: str, point_world: np.ndarr
     """``(3,)`` unnormalised velocity (world, per unit joint value) of a point rigidly attached to the joint's
     child, at the joint values ``values``; zero when the point lies on a hinge axis."""
     j = scene.joints[joint]
-    v0 = dict(values)
-    s = float(v0.get(joint, 0.0))
-    T0 = scene.T_world_link(j.child, v0)
-    v0[joint] = s + delta
-    T1 = scene.T_world_link(j.child, v0)
+    s = float(values.get(joint, 0.0))
+    T0 = scene.T_world_link(j.child, values)
     p_link = np.linalg.solve(T0, np.append(point_world, 1.0))
-    return (T1 @ p_link)[:3] / delta - point_world / delta
+    ahead, behind = dict(values), dict(values)
+    ahead[joint], behind[joint] = s + delta, s - delta
+    p1 = scene.T_world_link(j.child, ahead) @ p_link
+    p0 = scene.T_world_link(j.child, behind) @ p_link
+    return (p1 - p0)[:3] / (2 * delta)   # central difference: exact to O(delta^2)
 
 
 def _bar(geom: Geometry) -> tuple[np.ndarray | None, np.ndarray, float]:
@@ -151,9 +154,10 @@ def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: Plan
                     if d < 0.05:
                         near.append(c)
             cands = near
-        axis, width = None, 0.0
+        axis, width, grasp_link = None, 0.0, moving
         if cands:
             best = max(cands, key=lambda c: _extent(c[1]))
+            grasp_link = best[0]
             a, _, width = _bar(best[1])
             axis = None if a is None else best[2][:3, :3] @ a
         source = "grasp_point"
@@ -164,6 +168,7 @@ def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: Plan
                 f"no single fixed child, no collision geometry named '*handle*'); give OpenTask.grasp_point "
                 f"or grasp_link")
         best = max(cands, key=lambda c: _extent(c[1]))
+        grasp_link = best[0]
         a, centre, width = _bar(best[1])
         p_link = (best[2] @ np.append(centre, 1.0))[:3]
         axis = None if a is None else best[2][:3, :3] @ a
@@ -178,7 +183,7 @@ def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: Plan
     T_link = tuple(np.linalg.solve(T_world_moving, T) for T in frames)
     geoms = frozenset((ln, g.index) for ln, g, _ in cands)
     log.debug("%s: handle via %s at %s, outward %s", where, source, p_world.round(3), n.round(3))
-    return HandleGrasp(moving, geoms, T_link, width, source)
+    return HandleGrasp(moving, grasp_link, geoms, T_link, width, source)
 
 
 def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kind: str, tilt: float) -> list:

@@ -112,7 +112,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     world = PlanningWorld(kin, scene, task.joint, set(handle.handle_geoms), state)
     rng = np.random.default_rng(seed)
     base = dict(task=task, joint_names=robot.joint_names, amount=amount, start_object_q=s0,
-                moving_link=handle.moving_link, seed=seed, timings=timings)
+                moving_link=handle.moving_link, grasp_link=handle.grasp_link, seed=seed, timings=timings)
 
     def result(status, reason, **kw) -> PlanResult:
         timings["total"] = time.perf_counter() - t_all

@@ -204,6 +204,8 @@ def read_scene_urdf(path) -> SceneDescription:
         if name in links:
             raise SceneURDFError(f"{where}: link {name!r} is defined twice")
         geoms = tuple(_geometry(c, name, i, path.parent, where) for i, c in enumerate(el.findall("collision")))
+        for i, v in enumerate(el.findall("visual")):   # validated too: a broken visual breaks every loader
+            _geometry(v, name, i, path.parent, f"{where} (visual)")
         links[name] = LinkInfo(name, geoms)
     joints: dict[str, JointInfo] = {}
     children: set[str] = set()

@@ -112,6 +112,8 @@ class PlanResult:
     start_object_q : value of the task joint when the plan starts.
     T_link_grasp : (4, 4) grasp frame in the moving link's frame (rigid during the opening).
     moving_link : the link moved by the task joint.
+    grasp_link : the link whose bar is grasped (the handle link, or the moving link for a named geometry or
+        an explicit grasp point); simcheck attaches the gripper to it.
     method : how the opening was planned ("constrained" or "ik_tracking"; "" when not planned).
     timings : seconds per stage; collision_checks : count; seed : the seed used.
     """
@@ -126,6 +128,7 @@ class PlanResult:
     start_object_q: float = 0.0
     T_link_grasp: np.ndarray = field(default_factory=lambda: np.eye(4))
     moving_link: str = ""
+    grasp_link: str = ""
     method: str = ""
     timings: dict = field(default_factory=dict)
     collision_checks: int = 0
