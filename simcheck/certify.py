@@ -228,17 +228,14 @@ class Session:
             status = TaskStatus.CERTIFIED
         else:
             status = TaskStatus.FAILED
-            parts = [f"{c.name}: {c.detail}" for c in failed]
+            evidence = "; ".join(f"{c.name}: {c.detail}" for c in failed)
+            hints = []
             if self.against is not None:
                 hints = joint_differences(est, ref)
-                unknown = [b for b in blockers if b not in self.scene_links]
-                hints += [f"reference link {b} (absent from the estimate) blocked {task.joint}" for b in unknown]
-                hints += [f"scene link {b} blocked {task.joint}" for b in blockers if b in self.scene_links]
-                if hints:
-                    parts.append("estimate vs reference: " + "; ".join(hints))
-            elif blockers:
-                parts.append("blocked by " + ", ".join(blockers))
-            reason = "; ".join(parts)
+                hints += [f"reference link {b} (absent from the estimate) blocked {task.joint}"
+                          for b in blockers if b not in self.scene_links]
+            hints += [f"scene link {b} blocked {task.joint}" for b in blockers if b in self.scene_links]
+            reason = (f"{'; '.join(hints)} -- evidence: {evidence}" if hints else evidence)
         return TaskCertificate(task.kind, task.joint, status, reason, float(plan.amount), unit, tuple(crit), seed,
                                timings, rollout or "", tuple(images), plan_status="OK")
 

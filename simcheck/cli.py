@@ -63,16 +63,18 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     level = logging.ERROR if args.quiet else (logging.WARNING, logging.INFO, logging.DEBUG)[min(args.verbose, 2)]
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
-    import simcheck
+    from simcheck.certify import certify
+    from simcheck.robot_spec_file import load_robot_spec
+    from simcheck.run import run_scenario
 
     try:
         if args.command == "certify":
-            robot = simcheck.load_robot_spec(args.robot)
-            cert = simcheck.certify(args.scene, args.task, against=args.against, amounts=args.amount or None,
+            robot = load_robot_spec(args.robot)
+            cert = certify(args.scene, args.task, against=args.against, amounts=args.amount or None,
                                     seed=args.seed or 0, out=Path(args.out), robot=robot, images=not args.no_images,
                                     video=args.video, gui=args.gui)
         else:
-            cert = simcheck.run_scenario(args.scenario, out=Path(args.out), seed=args.seed, images=not args.no_images,
+            cert = run_scenario(args.scenario, out=Path(args.out), seed=args.seed, images=not args.no_images,
                                          video=args.video, gui=args.gui)
     except _input_errors() as exc:
         print(f"simcheck: error: {exc}", file=sys.stderr)

@@ -1,0 +1,148 @@
+"""Build WRONG estimates from a correct scene URDF by editing its XML (the input file is never modified).
+
+Each function reads ``src``, changes one joint the way a bad reconstruction would, and writes ``out``:
+
+* :func:`rotate_axis`          -- a drawer axis ``deg`` degrees off (rotated about the joint frame's z);
+* :func:`flip_hinge`           -- a door hinged on the wrong side (same geometry, hinge on the other edge);
+* :func:`revolute_as_prismatic`-- a door estimated as a drawer sliding out along the door's initial motion;
+* :func:`widen_limits`         -- joint limits ``factor`` times wider than the real ones;
+* :func:`add_box`              -- (for the reference) a neighbour the estimate does not have.
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+
+def _load(src):
+    return ET.parse(src)
+
+
+def _joint(root, name):
+    for j in root.findall("joint"):
+        if j.get("name") == name:
+            return j
+    raise KeyError(name)
+
+
+def _vec(el, attr, default="0 0 0"):
+    return np.array([float(v) for v in (el.get(attr) if el is not None and el.get(attr) else default).split()])
+
+
+def _fmt(v):
+    return " ".join(f"{x:.6g}" for x in v)
+
+
+def _save(tree, out) -> Path:
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tree.write(out, encoding="unicode")
+    return out
+
+
+def rotate_axis(src, joint: str, deg: float, out) -> Path:
+    tree = _load(src)
+    j = _joint(tree.getroot(), joint)
+    axis = j.find("axis")
+    a = _vec(axis, "xyz", "1 0 0")
+    axis.set("xyz", _fmt(Rotation.from_euler("z", deg, degrees=True).apply(a)))
+    return _save(tree, out)
+
+
+def _child_link(root, j):
+    name = j.find("child").get("link")
+    return next(l for l in root.findall("link") if l.get("name") == name)
+
+
+def _far_edge(root, j) -> np.ndarray:
+    """Child-frame vector from the joint origin to the farthest geometry edge, perpendicular to the axis."""
+    a = _vec(j.find("axis"), "xyz", "1 0 0")
+    a = a / np.linalg.norm(a)
+    best, best_d = None, -1.0
+    link = _child_link(root, j)
+    for col in link.findall("collision"):
+        box = col.find("geometry/box")
+        if box is None:
+            continue
+        c = _vec(col.find("origin"), "xyz")
+        s = _vec(box, "size") / 2
+        for sign in (-1, 1):
+            for k in range(3):
+                u = np.zeros(3)
+                u[k] = sign
+                if abs(np.dot(u, a)) > 0.5:
+                    continue
+                d = np.dot(c, u) + s[k]
+                if d > best_d:
+                    best, best_d = u, d
+    return best * best_d
+
+
+def flip_hinge(src, joint: str, out) -> Path:
+    tree = _load(src)
+    root = tree.getroot()
+    j = _joint(root, joint)
+    shift = _far_edge(root, j)
+    origin = j.find("origin")
+    xyz, rpy = _vec(origin, "xyz"), _vec(origin, "rpy")
+    origin.set("xyz", _fmt(xyz + Rotation.from_euler("xyz", rpy).apply(shift)))
+    child = _child_link(root, j)
+    for tag in ("visual", "collision", "inertial"):
+        for el in child.findall(tag):
+            o = el.find("origin")
+            if o is None:
+                o = ET.SubElement(el, "origin")
+            o.set("xyz", _fmt(_vec(o, "xyz") - shift))
+    for other in root.findall("joint"):
+        if other.find("parent").get("link") == child.get("name"):
+            o = other.find("origin")
+            o.set("xyz", _fmt(_vec(o, "xyz") - shift))
+    axis = j.find("axis")
+    axis.set("xyz", _fmt(-_vec(axis, "xyz")))
+    return _save(tree, out)
+
+
+def revolute_as_prismatic(src, joint: str, out, travel: float = 0.3) -> Path:
+    tree = _load(src)
+    root = tree.getroot()
+    j = _joint(root, joint)
+    a = _vec(j.find("axis"), "xyz")
+    u = _far_edge(root, j)
+    d = np.cross(a, u)
+    j.set("type", "prismatic")
+    j.find("axis").set("xyz", _fmt(d / np.linalg.norm(d)))
+    lim = j.find("limit")
+    lim.set("lower", "0")
+    lim.set("upper", f"{travel:g}")
+    return _save(tree, out)
+
+
+def widen_limits(src, joint: str, factor: float, out) -> Path:
+    tree = _load(src)
+    lim = _joint(tree.getroot(), joint).find("limit")
+    lim.set("upper", f"{float(lim.get('upper')) * factor:.6g}")
+    return _save(tree, out)
+
+
+def add_box(src, out, name: str, xyz, size) -> Path:
+    """Add a fixed box link ``name`` at world position ``xyz`` (3,) with ``size`` (3,), metres."""
+    tree = _load(src)
+    root = tree.getroot()
+    link = ET.SubElement(root, "link", name=name)
+    inertial = ET.SubElement(link, "inertial")
+    ET.SubElement(inertial, "mass", value="5.0")
+    ET.SubElement(inertial, "inertia", ixx="0.1", iyy="0.1", izz="0.1", ixy="0", ixz="0", iyz="0")
+    for tag in ("visual", "collision"):
+        el = ET.SubElement(link, tag)
+        ET.SubElement(el, "origin", xyz="0 0 0")
+        g = ET.SubElement(el, "geometry")
+        ET.SubElement(g, "box", size=_fmt(size))
+    jt = ET.SubElement(root, "joint", name=f"{name}_joint", type="fixed")
+    ET.SubElement(jt, "parent", link="world")
+    ET.SubElement(jt, "child", link=name)
+    ET.SubElement(jt, "origin", xyz=_fmt(xyz), rpy="0 0 0")
+    return _save(tree, out)

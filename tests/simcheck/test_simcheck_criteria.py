@@ -1,0 +1,171 @@
+"""Every criterion passes on a clean rollout and FAILS on a rollout built to fail it (no PyBullet)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from simcheck.config import CriteriaConfig
+from simcheck.criteria import (CriterionResult, grasp_held, handle_path_deviation, opened_fraction,
+                               plan_collision_free, plan_found, robot_joint_limits, rollout_criteria,
+                               settled_angular_speed, settled_linear_speed, unexpected_contact_depth,
+                               unexpected_contact_force)
+
+from simcheck_rollout_factory import good_rollout, with_
+
+
+@pytest.fixture(scope="module")
+def good():
+    return good_rollout()
+
+
+def test_clean_rollout_passes_every_criterion_with_margins(good):
+    results = rollout_criteria(good)
+    assert [r.name for r in results if not r.passed] == []
+    by = {r.name: r for r in results}
+    assert by["opened_fraction"].value == pytest.approx(1.0)
+    assert by["opened_fraction"].margin == pytest.approx(0.1)
+    assert by["handle_path_deviation"].value < 2e-3
+    assert by["grasp_held"].value < 3e-3
+    assert by["unexpected_contact_force"].value == 0.0   # finger-handle contacts are expected
+
+
+def test_opened_fraction_fails_when_the_joint_stops_short(good):
+    s = np.minimum(good.object_q, 0.2)
+    r = opened_fraction(with_(good, object_q=s))
+    assert not r.passed
+    assert r.value == pytest.approx(0.2 / 0.3)
+    assert r.margin == pytest.approx(0.2 / 0.3 - 0.9)
+    assert "cabinet1_drawer2_joint opened 0.200 of the requested 0.300" in r.detail
+
+
+def test_opened_fraction_counts_from_the_start_value(good):
+    r = opened_fraction(with_(good, object_q0=0.1))
+    assert r.value == pytest.approx((0.3 - 0.1) / 0.3) and not r.passed
+
+
+def test_handle_path_deviation_fails_when_the_handle_leaves_the_plan(good):
+    gp = good.grasp_point.copy()
+    mask = good.in_segment("open")
+    lateral = np.linspace(0.0, 0.15, mask.sum())            # a 30 deg axis error over 0.3 m
+    gp[mask, 1] += lateral
+    r = handle_path_deviation(with_(good, grasp_point=gp))
+    assert not r.passed
+    assert r.value == pytest.approx(0.15, abs=2e-3)
+    assert "cabinet1_handle3 left the planned path by 0.15" in r.detail
+
+
+def test_handle_path_deviation_is_infinite_without_a_grasp(good):
+    r = handle_path_deviation(with_(good, grasp_point=np.full_like(good.grasp_point, np.nan)))
+    assert not r.passed and math.isinf(r.value)
+    assert "never grasped" in r.detail
+
+
+def test_handle_path_deviation_does_not_pass_a_handle_that_stays_put(good):
+    # the drawer does not move at all while the plan pulls: time-aligned deviation sees it
+    T = good.T_world_handle.copy()
+    T[:, :3, 3] = T[0, :3, 3]
+    gp = np.where(np.isfinite(good.grasp_point), T[:, :3, 3], np.nan)
+    r = handle_path_deviation(with_(good, grasp_point=gp, T_world_handle=T))
+    assert not r.passed and r.value == pytest.approx(0.3, abs=2e-3)
+
+
+def test_settled_linear_speed_fails_when_the_link_still_moves(good):
+    v = good.link_speed.copy()
+    v[-1] = 0.25
+    r = settled_linear_speed(with_(good, link_speed=v))
+    assert not r.passed and r.margin == pytest.approx(0.1 - 0.25)
+    assert "cabinet1_drawer2 still moves at 0.250 m/s" in r.detail
+
+
+def test_settled_angular_speed_fails_when_the_link_still_turns(good):
+    w = good.link_angular_speed.copy()
+    w[-1] = 1.5
+    r = settled_angular_speed(with_(good, link_angular_speed=w))
+    assert not r.passed and r.value == pytest.approx(1.5)
+
+
+def test_unexpected_contact_force_fails_on_a_robot_scene_contact(good):
+    r0 = good
+    bad = with_(r0, contact_sample=np.append(r0.contact_sample, 30), contact_robot_link=np.append(r0.contact_robot_link, "link5"),
+                contact_scene_link=np.append(r0.contact_scene_link, "cabinet1_body1"),
+                contact_force=np.append(r0.contact_force, 42.0), contact_depth=np.append(r0.contact_depth, 0.002))
+    r = unexpected_contact_force(bad)
+    assert not r.passed and r.value == pytest.approx(42.0)
+    assert "robot link link5 hit scene link cabinet1_body1" in r.detail and "grasp" in r.detail
+    assert unexpected_contact_depth(bad).passed           # 2 mm is inside the penetration tolerance
+
+
+def test_gripper_on_a_non_handle_link_is_unexpected(good):
+    bad = with_(good, contact_scene_link=np.array(["cabinet1_drawer2", "cabinet1_handle3"]))
+    assert not unexpected_contact_force(bad).passed
+
+
+def test_unexpected_contact_depth_fails_on_a_deep_floor_contact(good):
+    bad = with_(good, contact_sample=np.array([5]), contact_robot_link=np.array(["link7"]),
+                contact_scene_link=np.array(["floor"]), contact_force=np.array([1.0]), contact_depth=np.array([0.02]))
+    r = unexpected_contact_depth(bad)
+    assert not r.passed and r.value == pytest.approx(0.02)
+    assert "floor" in r.detail and "20.0 mm" in r.detail
+    assert unexpected_contact_force(bad).passed           # 1 N alone is tolerated
+
+
+def test_grasp_held_fails_when_the_grasp_is_lost_mid_opening(good):
+    active = good.grasp_active.copy()
+    idx = np.flatnonzero(good.in_segment("open"))
+    active[idx[10]:] = False
+    r = grasp_held(with_(good, grasp_active=active, grasp_note="grasp torn off at t=1.00 s"))
+    assert not r.passed and math.isinf(r.value)
+    assert "lost at t=" in r.detail and "torn off" in r.detail
+
+
+def test_grasp_held_fails_when_the_handle_slips(good):
+    gp = good.grasp_point.copy()
+    mask = good.in_segment("open")
+    gp[mask, 0] -= np.linspace(0, 0.04, mask.sum())
+    r = grasp_held(with_(good, grasp_point=gp))
+    assert not r.passed and r.value == pytest.approx(0.04, abs=2e-3)
+
+
+def test_grasp_held_fails_without_any_grasp(good):
+    r = grasp_held(with_(good, grasp_active=np.zeros_like(good.grasp_active),
+                         grasp_note="fingers closed on 0 of 2 required contacts"))
+    assert not r.passed and "never held handle cabinet1_handle3" in r.detail and "0 of 2" in r.detail
+
+
+def test_robot_joint_limits_fails_beyond_a_limit(good):
+    q = good.robot_q.copy()
+    q[40, 2] = 1.05
+    r = robot_joint_limits(with_(good, robot_q=q))
+    assert not r.passed and r.value == pytest.approx(0.05)
+    assert "robot joint z" in r.detail
+
+
+def test_robot_joint_limits_ignores_unlimited_joints(good):
+    q = good.robot_q.copy()
+    q[:, 3] = 7.0
+    r = robot_joint_limits(with_(good, robot_q=q, robot_lower=np.array([-1, -1, -1, -np.inf]),
+                                 robot_upper=np.array([1, 1, 1, np.inf])))
+    assert r.passed
+
+
+def test_plan_found_and_plan_collision_free():
+    assert plan_found(True).passed and not plan_found(False, "no stand pose").passed
+    assert plan_found(False, "no stand pose").detail == "no stand pose"
+    ok = plan_collision_free(0.001, "")
+    bad = plan_collision_free(0.02, "robot link hand penetrates scene link body by 20 mm")
+    assert ok.passed and not bad.passed and bad.margin == pytest.approx(0.005 - 0.02)
+
+
+def test_thresholds_come_from_the_config(good):
+    strict = CriteriaConfig(opened_fraction=1.01)
+    assert not opened_fraction(good, strict).passed
+    assert opened_fraction(good, strict).threshold == 1.01
+
+
+def test_criterion_json_round_trip_keeps_infinite_values_failing():
+    r = grasp_held(with_(good_rollout(), grasp_active=np.zeros(120, bool)))
+    d = r.to_dict()
+    assert d["value"] is None                               # JSON has no infinity
+    back = CriterionResult.from_dict(d)
+    assert math.isinf(back.value) and not back.passed and back.name == "grasp_held"
