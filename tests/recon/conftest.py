@@ -122,3 +122,12 @@ def kitchen_rec(kitchen_scan):
     from recon.pipeline import reconstruct_scan
 
     return reconstruct_scan(kitchen_scan[0], seed=0)
+
+
+@pytest.fixture(scope="session")
+def synth():
+    """The builders of this module (tests cannot import conftest under --import-mode=importlib)."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(box=box, cylinder_z=cylinder_z, cabinet=cabinet, table=table,
+                           scan_arrays=scan_arrays, write_ply=write_ply)
