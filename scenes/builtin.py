@@ -18,6 +18,7 @@ from .errors import PlacementError, SceneSpecError
 from .generators import (MIXED_CABINET_LAYOUTS, make_bed, make_cabinet, make_chair, make_microwave,
                          make_refrigerator, make_table)
 from .model import Scene
+from .validate import validate_scene
 
 __all__ = ["SCENES", "SCENE_DESCRIPTIONS", "build_scene", "MAX_ATTEMPTS"]
 
@@ -107,5 +108,7 @@ def build_scene(name: str, seed: int = 0, gcfg: GeneratorConfig = DEFAULT_GENERA
             log.debug("scene %s seed %d attempt %d: %s", name, seed, attempt, e)
             last = e
             continue
-        return comp.build()
+        scene = comp.build()
+        validate_scene(scene)
+        return scene
     raise PlacementError(f"scene {name!r} seed {seed}: no valid layout in {MAX_ATTEMPTS} attempts ({last})")

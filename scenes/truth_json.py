@@ -10,6 +10,7 @@ import numpy as np
 from .atomic_write import write_text_atomic
 from .config import DEFAULT_GENERATOR
 from .errors import SceneSpecError
+from .validate import validate_scene
 from .model import ArticulatedObject, Joint, JointType, Part, Scene, Shape, ShapeType, Wall
 
 __all__ = ["TRUTH_FORMAT", "truth_dict_from_scene", "write_truth_json", "scene_from_truth_dict",
@@ -78,8 +79,16 @@ def _shape_from(d: dict) -> Shape:
 
 def scene_from_truth_dict(d: dict, source: str = "truth.json") -> Scene:
     """Inverse of :func:`truth_dict_from_scene` (joint axes/origins back to object frames)."""
-    if d.get("format") != TRUTH_FORMAT:
-        raise SceneSpecError(f"{source}: format is {d.get('format')!r}, expected {TRUTH_FORMAT!r}")
+    if not isinstance(d, dict) or d.get("format") != TRUTH_FORMAT:
+        got = d.get("format") if isinstance(d, dict) else type(d).__name__
+        raise SceneSpecError(f"{source}: format is {got!r}, expected {TRUTH_FORMAT!r}")
+    try:
+        return _scene_from(d)
+    except (KeyError, TypeError, ValueError) as e:
+        raise SceneSpecError(f"{source}: malformed truth ({type(e).__name__}: {e})") from e
+
+
+def _scene_from(d: dict) -> Scene:
     objects = []
     for od in d["objects"]:
         T_wo = np.array(od["T_world_object"], float)
@@ -109,4 +118,6 @@ def read_truth_json(path: str | Path) -> Scene:
         d = json.loads(path.read_text())
     except (OSError, json.JSONDecodeError) as e:
         raise SceneSpecError(f"{path}: cannot read truth JSON: {e}") from e
-    return scene_from_truth_dict(d, str(path))
+    scene = scene_from_truth_dict(d, str(path))
+    validate_scene(scene)
+    return scene

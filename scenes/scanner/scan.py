@@ -27,8 +27,9 @@ class Scan:
 
     ``points`` (n, 3) float64; ``normals`` (n, 3) float64 unit (true surface normals); ``colors``
     (n, 3) uint8; ``object_id``/``part_id`` (n,) int32 (-1 = background); ``labels``: the labels.json
-    dict; ``T_world_cameras`` (k, 4, 4) the frames used; ``is_outlier`` (n,) bool (truth only, not
-    written to scan.ply).
+    dict; ``T_world_cameras`` (k, 4, 4) the frames used. Truth kept for tests and metrics (not
+    written to scan.ply): ``is_outlier`` (n,) bool, ``frame`` (n,) int32 index of the camera that saw
+    the point, ``range`` (n,) float64 true (noise-free) distance from that camera, metres.
     """
 
     points: np.ndarray
@@ -39,6 +40,8 @@ class Scan:
     labels: dict
     T_world_cameras: np.ndarray
     is_outlier: np.ndarray
+    frame: np.ndarray
+    range: np.ndarray
 
     def __len__(self) -> int:
         return len(self.points)
@@ -88,7 +91,7 @@ def scan_scene(scene: Scene, params: ScanParams, seed: int = 0) -> Scan:
     label_of = {p.id: p.label for o in scene.objects for p in o.parts}
     chunks = []
     d_cam = _camera_dirs(params.width, params.height, params.fov_deg)
-    for T in poses:
+    for k, T in enumerate(poses):
         o, d = pixel_rays(T, params.width, params.height, params.fov_deg, d_cam)
         hits = caster.cast(o, d)
         ok = (hits.mesh >= 0) & (hits.t <= params.max_range)
@@ -96,6 +99,7 @@ def scan_scene(scene: Scene, params: ScanParams, seed: int = 0) -> Scan:
         n = np.where((np.einsum("ij,ij->i", n, d) > 0)[:, None], -n, n)   # face the camera
         keep = degrade.keep_returns(d, n, params.missing_rate, params.grazing_limit_deg, rng)
         o, d, t, mi, n = o[keep], d[keep], t[keep], mi[keep], n[keep]
+        t_true = t
         t = degrade.add_depth_noise(t, params.depth_noise_base, params.depth_noise_quadratic, rng)
         t, out = degrade.add_outliers(t, params.outlier_rate, params.outlier_range, rng)
         p = o + t[:, None] * d
@@ -104,10 +108,11 @@ def scan_scene(scene: Scene, params: ScanParams, seed: int = 0) -> Scan:
         fg, bg = np.flatnonzero(oid >= 0), np.flatnonzero(oid < 0)
         sel = np.concatenate([fg[degrade.voxel_keep(p[fg], params.voxel_size, rng)],
                               bg[degrade.voxel_keep(p[bg], params.background_voxel, rng)]])
-        chunks.append((p[sel], n[sel], d[sel], oid[sel], mesh_part[mi][sel], out[sel]))
+        chunks.append((p[sel], n[sel], d[sel], oid[sel], mesh_part[mi][sel], out[sel],
+                       np.full(len(sel), k, np.int32), t_true[sel]))
     if not chunks or sum(len(c[0]) for c in chunks) == 0:
         raise ScanError(f"scan of scene {scene.name!r}: no camera ray hit anything")
-    pts, nrm, dirs, oid, pid, out = (np.concatenate(a) for a in zip(*chunks))
+    pts, nrm, dirs, oid, pid, out, frame, rng_true = (np.concatenate(a) for a in zip(*chunks))
     # downsample objects and background separately
     fg = np.flatnonzero(oid >= 0)
     bg = np.flatnonzero(oid < 0)
@@ -115,9 +120,10 @@ def scan_scene(scene: Scene, params: ScanParams, seed: int = 0) -> Scan:
                            bg[degrade.voxel_keep(pts[bg], params.background_voxel, rng)]])
     keep.sort()
     pts, nrm, dirs, oid, pid, out = pts[keep], nrm[keep], dirs[keep], oid[keep], pid[keep], out[keep]
+    frame, rng_true = frame[keep], rng_true[keep]
     pid = degrade.flip_boundary_labels(pts, oid, pid, params.label_boundary_width, params.label_flip_prob, rng)
     rgba = [LABEL_RGBA.get(label_of.get(int(p), "wall"), (0.6, 0.6, 0.6, 1)) for p in pid]
     colors = _colors(rgba, nrm, dirs)
     log.info("scanned %s: %d frames, %d points", scene.name, len(poses), len(pts))
     return Scan(pts, nrm, colors, oid.astype(np.int32), pid.astype(np.int32), labels_from_scene(scene),
-                poses, out)
+                poses, out, frame, rng_true)
