@@ -48,6 +48,9 @@ class ReconConfig:
     candidates: tuple[str, ...] = ("box", "cylinder_x", "cylinder_y", "cylinder_z", "sphere")
     """Candidate templates M^c: box, a cylinder along each box axis, sphere."""
 
+    completion_reach: float = 0.1
+    """Legs are extended (completion.py) to a surface above / below them at most this far (m)."""
+
     # --- surface planes and contacts, Eq. 1 (planes.py, contacts.py) ---
     cylinder_side_faces: int = 8
     """A cylinder's side is represented by this many tangent rectangles (planes of Π)."""
@@ -67,9 +70,13 @@ class ReconConfig:
     density: float = 600.0
     """kg/m^3 of every part (particle board); mass = density × primitive volume."""
     drawer_travel_fraction: float = 0.8
-    """Drawer upper limit = this × the body's depth along the drawer axis."""
-    door_max_angle: float = 2.0
-    """Largest door swing considered (rad, ~115°); the limit stops earlier on a collision."""
+    """Drawer upper limit = this × the drawer box's depth, estimated as the body's depth along the
+    drawer axis minus ``drawer_back_clearance`` (a closed drawer's box is hidden from the camera)."""
+    drawer_back_clearance: float = 0.025
+    """Back panel plus the gap behind a drawer box (m)."""
+    door_max_angle: float = 1.75
+    """A door hinge's stop (rad, 100°; furniture hinges open 95–110°); the swept-collision test
+    stops the door earlier when it would hit its body, a neighbour or a wall."""
     swing_step: float = 0.035
     """Angular / travel sampling step (rad or m/rad) of the collision sweep."""
     sweep_clearance: float = 0.015

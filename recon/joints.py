@@ -7,7 +7,8 @@ shortened if pulling the drawer out would run into other scan points.
 
 Door (revolute): same face; the hinge is the door's edge opposite its handle — a vertical hinge when
 the handle sits off to one side, a horizontal one at the bottom (fold-down) or top (fold-up) when it
-sits near the top or bottom edge. The hinge line lies on the door's outer face. The axis sign makes a
+sits near the top or bottom edge. The hinge line lies on the door's back face (the side facing its
+body), at the edge. The axis sign makes a
 positive angle swing the door outward. The limit is the largest angle (up to ``door_max_angle``) the
 door and its handle sweep without containing other scan points (its body's, a neighbour's, a wall's).
 
@@ -64,7 +65,7 @@ def hinge(parent: Primitive, door: Primitive, handles: list[Primitive], normal: 
     c = door.center
     lo_h, hi_h = _extent(door, h)
     lo_v, hi_v = _extent(door, v)
-    _, front = _extent(door, normal)
+    back, _ = _extent(door, normal)
     half_h, half_v = max((hi_h - lo_h) / 2, 1e-6), max((hi_v - lo_v) / 2, 1e-6)
     mid_h, mid_v = (hi_h + lo_h) / 2, (hi_v + lo_v) / 2
     if handles:
@@ -78,12 +79,12 @@ def hinge(parent: Primitive, door: Primitive, handles: list[Primitive], normal: 
         desc = "at the body's nearer edge (no handle)"
     if abs(a_v) > abs(a_h):     # handle near the top/bottom edge: horizontal hinge at the other edge
         edge_v = lo_v if a_v > 0 else hi_v
-        origin = c + (edge_v - c @ v) * v + (front - c @ normal) * normal
+        origin = c + (edge_v - c @ v) * v + (back - c @ normal) * normal
         axis = h.copy()
         desc = ("horizontal hinge at the bottom, " if a_v > 0 else "horizontal hinge at the top, ") + desc
     else:
         edge_h = lo_h if a_h > 0 else hi_h
-        origin = c + (edge_h - c @ h) * h + (front - c @ normal) * normal
+        origin = c + (edge_h - c @ h) * h + (back - c @ normal) * normal
         axis = v.copy()
         desc = "vertical hinge " + desc
     if np.cross(axis, c - origin) @ normal < 0:   # positive angle must swing the door outward
@@ -169,7 +170,7 @@ def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str]
         obstacles = obstacles_for(sub)
         if jtype is JointType.PRISMATIC:
             lo, hi = _extent(prims[p], normal)
-            travel = config.drawer_travel_fraction * (hi - lo)
+            travel = config.drawer_travel_fraction * max(hi - lo - config.drawer_back_clearance, 0.0)
             steps = np.append(np.arange(min(config.swing_step, travel / 4), travel, min(config.swing_step, travel / 4)), travel)
             reach = sweep_limit(moving, lambda s: _translation(normal, s), steps, obstacles, config,
                                 reach=travel)

@@ -13,6 +13,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from recon.completion import complete_vertical_parts
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.fitting import fit_part
@@ -83,6 +84,10 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
             fits[p.part_id] = (prim, score, table, len(p.points))
             log.debug("object %d part %d (%s): %s, score %.4f", obj.id, p.part_id, p.label, name, score.total)
         prims = {i: f[0] for i, f in fits.items()}
+        prims, completed = complete_vertical_parts(prims, labels, config)
+        for i, (down, up) in completed.items():
+            log.info("object %d part %d (%s): extended %.3f m down, %.3f m up to its supports",
+                     obj.id, i, labels[i], down, up)
         planes = {i: prims[i].planes(config.cylinder_side_faces) for i in prims}
         contacts = contact_edges(planes, config)
         tree = part_tree(obj.category, labels, {i: prims[i].volume for i in prims}, contacts, config)

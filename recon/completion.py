@@ -1,0 +1,78 @@
+"""Completion of supporting parts whose ends the camera missed.
+
+A scanner rarely sees the top few centimetres of a table leg (under the top's overhang) or its foot
+(occluded by the floor's grazing angle), so a fitted leg stops short of what it holds and Eq. 1 finds
+no contact. For parts whose template says they span vertically (legs), the primitive is extended
+along its vertical axis down to the nearest upward-facing surface below (another part, or the floor
+z = 0) and up to the nearest downward-facing surface above whose outline covers the leg, when these
+are within ``completion_reach``. Nothing else is changed.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from recon.config import ReconConfig
+from recon.primitive import Primitive, PrimitiveKind
+
+__all__ = ["VERTICAL_SPAN_LABELS", "complete_vertical_parts"]
+
+VERTICAL_SPAN_LABELS = frozenset({"leg"})
+
+
+def _vertical_axis(prim: Primitive) -> int | None:
+    R = prim.T_world_part[:3, :3]
+    k = int(np.argmax(np.abs(R[2, :])))
+    if abs(R[2, k]) < 0.97 or (prim.kind is PrimitiveKind.CYLINDER and k != 2):
+        return None
+    return k if prim.kind is not PrimitiveKind.SPHERE else None
+
+
+def complete_vertical_parts(prims: dict[int, Primitive], labels: dict[int, str],
+                            config: ReconConfig) -> tuple[dict[int, Primitive], dict[int, tuple[float, float]]]:
+    """Extend legs to what supports / is supported by them.
+
+    Returns (new {part_id: primitive}, {part_id: (metres added below, metres added above)}).
+    """
+    out, changes = dict(prims), {}
+    planes = {i: p.planes(config.cylinder_side_faces) for i, p in prims.items()}
+    for i, prim in prims.items():
+        if labels[i] not in VERTICAL_SPAN_LABELS:
+            continue
+        k = _vertical_axis(prim)
+        if k is None:
+            continue
+        c = prim.corners()
+        bottom, top = float(c[:, 2].min()), float(c[:, 2].max())
+        xy = shapely.Point(*prim.center[:2])
+        below, above = [0.0], []
+        for j, pls in planes.items():
+            if j == i:
+                continue
+            for pl in pls:
+                if abs(pl.normal[2]) < 0.97:
+                    continue
+                z = float(pl.polygon[:, 2].mean())
+                if not shapely.Polygon(pl.polygon[:, :2]).buffer(1e-6).contains(xy):
+                    continue
+                if pl.normal[2] > 0 and bottom - config.completion_reach <= z <= bottom + config.theta_d:
+                    below.append(z)
+                elif pl.normal[2] < 0 and top - config.theta_d <= z <= top + config.completion_reach:
+                    above.append(z)
+        new_bottom = max(z for z in below if z <= bottom + config.theta_d) if bottom - max(below) <= config.completion_reach else bottom
+        new_top = min(above) if above else top
+        if new_bottom >= bottom - 1e-9 and new_top <= top + 1e-9:
+            continue
+        new_bottom, new_top = min(new_bottom, bottom), max(new_top, top)
+        R = prim.T_world_part[:3, :3]
+        axis = R[:, k] * np.sign(R[2, k])
+        size = prim.size.copy()
+        length = (new_top - new_bottom) / abs(R[2, k])
+        shift = ((new_top + new_bottom) / 2 - (top + bottom) / 2) / abs(R[2, k])
+        size[k] = length
+        T = prim.T_world_part.copy()
+        T[:3, 3] = prim.center + shift * axis
+        out[i] = Primitive(prim.kind, size, T)
+        changes[i] = (bottom - new_bottom, new_top - top)
+    return out, changes
