@@ -12,6 +12,7 @@ from __future__ import annotations
 import logging
 
 import numpy as np
+from shapely.affinity import affine_transform
 from shapely.geometry import Polygon
 
 from .config import DEFAULT_COMPOSER, ComposerConfig
@@ -48,12 +49,23 @@ class RoomComposer:
         self.objects: list[ArticulatedObject] = []
         self._fp: dict[int, Polygon] = {}
         self._ko: dict[int, Polygon] = {}
+        self._local: dict[int, tuple[tuple, Polygon, Polygon]] = {}
         self._next_part = 1
 
     # ------------------------------------------------------------------ checks
+    def _polygons(self, cand: ArticulatedObject) -> tuple[Polygon, Polygon]:
+        """(footprint, keep-out) of ``cand`` in the world: computed once in the object frame, then moved."""
+        key = id(cand.parts)
+        if key not in self._local or self._local[key][0] is not cand.parts:   # ids can be reused
+            local = cand.placed(np.eye(4))
+            self._local[key] = (cand.parts, footprint(local), keepout(local, self.cfg.front_clearance))
+        T = cand.T_world_object
+        m = [T[0, 0], T[0, 1], T[1, 0], T[1, 1], T[0, 3], T[1, 3]]
+        _, fp, ko = self._local[key]
+        return affine_transform(fp, m), affine_transform(ko, m)
+
     def _fits(self, cand: ArticulatedObject, support: int | None) -> bool:
-        fp = footprint(cand)
-        ko = keepout(cand, self.cfg.front_clearance)
+        fp, ko = self._polygons(cand)
         if support is not None:
             top = self._fp[support].buffer(1e-6)
             if not top.contains(fp):
@@ -70,8 +82,7 @@ class RoomComposer:
 
     def _add(self, obj: ArticulatedObject) -> int:
         self.objects.append(obj)
-        self._fp[obj.id] = footprint(obj)
-        self._ko[obj.id] = keepout(obj, self.cfg.front_clearance)
+        self._fp[obj.id], self._ko[obj.id] = self._polygons(obj)
         self._next_part += len(obj.parts)
         log.debug("%s: placed %s at %s", self.name, obj.name, np.round(obj.T_world_object[:3, 3], 3))
         return obj.id
