@@ -51,6 +51,7 @@ class Case:
     seconds: dict = field(default_factory=dict)            # method -> reconstruction wall time (s)
     metrics: dict = field(default_factory=dict)            # method -> recon.metrics.SceneMetrics
     stage_seconds: dict = field(default_factory=dict)      # recon's own stage timings
+    parts: list = field(default_factory=list)              # (category, PartMetrics) of the part-level method
     error: str = ""
 
     @property
@@ -71,7 +72,8 @@ def run_case(scene: str, seed: int, preset: str, root: Path, samples: int, fresh
     """Make/scan the scene, run both methods, score both."""
     import recon
     from recon.baseline import object_level_from_files
-    from recon.metrics import MetricsConfig, estimate_from_reconstruction, evaluate_scene, read_truth
+    from recon.metrics import (MetricsConfig, estimate_from_reconstruction, evaluate_parts, evaluate_scene,
+                               read_truth)
 
     case = Case(scene, seed, preset)
     try:
@@ -85,7 +87,12 @@ def run_case(scene: str, seed: int, preset: str, root: Path, samples: int, fresh
         n_parts = sum(len(o.parts) for o in rec.objects)
         case.n_objects = len(rec.objects)
         case.points_per_part = float(sum(p.n_points for o in rec.objects for p in o.parts) / max(n_parts, 1))
-        case.metrics[PART] = evaluate_scene(truth, [estimate_from_reconstruction(o) for o in rec.objects], cfg)
+        estimates = [estimate_from_reconstruction(o) for o in rec.objects]
+        case.metrics[PART] = evaluate_scene(truth, estimates, cfg)
+        true_ids = {o.id for o in truth.objects}
+        for e in estimates:
+            if e.object_id in true_ids:
+                case.parts += [(e.category, r) for r in evaluate_parts(truth.object(e.object_id), e, seed=seed)]
         t0 = time.perf_counter()
         base = object_level_from_files(d / "scan.ply", d / "labels.json", seed=seed)
         case.seconds[OBJECT] = time.perf_counter() - t0
@@ -166,13 +173,14 @@ def table_joints(cases: list[Case], presets: list[str]) -> None:
     for p in presets:
         for m in (PART, OBJECT):
             s = pooled_joints(cases, p, m)
-            rows.append([p, m, str(s.n_joints), _f(100 * s.type_accuracy, "{:.1f}%"), str(s.n_movable),
+            rows.append([p, m, str(s.n_joints), _f(100 * s.type_accuracy, "{:.1f}%"),
+                         _f(100 * s.parent_accuracy, "{:.1f}%"), str(s.n_movable),
                          _f(s.median_axis_error_deg, "{:.2f}"), _f(s.median_axis_error_unsigned_deg, "{:.2f}"),
                          str(s.n_revolute), _f(100 * s.median_hinge_distance_m, "{:.2f}"),
                          _f(100 * s.median_prismatic_upper_error_m, "{:.1f}"),
                          _f(np.degrees(s.median_revolute_upper_error_rad), "{:.1f}")])
     _print_table("Joints (matched by child part; axis error sign-aware: a flipped axis is 180 deg)",
-                 ["preset", "method", "joints", "type acc", "movable", "med axis deg", "unsigned",
+                 ["preset", "method", "joints", "type acc", "parent acc", "movable", "med axis deg", "unsigned",
                   "revolute", "med hinge cm", "med drawer limit err cm", "med door limit err deg"], rows)
 
 
@@ -188,6 +196,26 @@ def table_timing(cases: list[Case], presets: list[str]) -> None:
                              _f(np.mean(per_obj), "{:.3f}"), _f(np.mean([c.points_per_part for c in ok]), "{:.0f}")])
     _print_table("Time (wall, one process; shared 2-core machine)",
                  ["preset", "method", "s/scene mean", "s/scene max", "s/object mean", "points/part"], rows)
+
+
+def table_parts(cases: list[Case], presets: list[str]) -> None:
+    rows = []
+    for p in presets:
+        by_label: dict[str, list] = {}
+        for c in cases:
+            if c.preset == p and not c.error:
+                for cat, r in c.parts:
+                    by_label.setdefault(r.label, []).append(r)
+        for label, rs in sorted(by_label.items()):
+            ok = [r for r in rs if r.status.value == "ok"]
+            rows.append([p, label, str(len(rs)), str(len(rs) - len(ok)),
+                         _f(np.mean([r.iou for r in ok]) if ok else float("nan")),
+                         _f(np.mean([r.chamfer for r in ok]) if ok else float("nan"), "{:.4f}"),
+                         _f(100 * np.median([r.centre_error_m for r in ok]) if ok else float("nan"), "{:.2f}"),
+                         _f(np.median([r.size_ratio for r in ok]) if ok else float("nan"), "{:.2f}")])
+    _print_table("Part-level diagnostics per part label (each part alone, in its object's unit box / lattice)",
+                 ["preset", "label", "parts", "missing", "mean IoU", "mean Cdist", "med centre err cm",
+                  "med volume ratio"], rows)
 
 
 def worst_objects(cases: list[Case], preset: str, n: int = 8) -> None:
@@ -310,6 +338,7 @@ def main(argv: list[str] | None = None) -> int:
     table_map(cases, presets)
     table_joints(cases, presets)
     table_timing(cases, presets)
+    table_parts(cases, presets)
     for p in presets:
         worst_objects(cases, p)
     results = targets(cases, presets)

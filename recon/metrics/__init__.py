@@ -13,7 +13,9 @@ Scene:
     read_truth("truth.json") -> TruthScene
     estimate_from_reconstruction(obj) -> ObjectEstimate      (the baseline builds ObjectEstimate too)
     evaluate_scene(truth, estimates, MetricsConfig()) -> SceneMetrics (per object; .chamfer, .iou means)
-    joint_summary(comparisons) -> JointSummary (type accuracy, median axis / hinge / limit errors)
+    joint_summary(comparisons) -> JointSummary (type / parent accuracy, median axis / hinge / limit errors)
+Diagnostics (not in the paper):
+    evaluate_parts(truth_object, estimate) -> PartMetrics per true part (Chamfer, IoU, centre error)
 
 Pure numpy / scipy / trimesh (manifold3d for unions); no simulator.
 """
@@ -28,6 +30,7 @@ from recon.metrics.joint_errors import (JointComparison, JointMatch, axis_angle_
 from recon.metrics.kinematic_ap import (average_precision, contact_edge_ap, mean_average_precision,
                                         undirected_scores)
 from recon.metrics.objects import ObjectEstimate, estimate_from_reconstruction
+from recon.metrics.part_errors import PartMetrics, PartStatus, evaluate_parts
 from recon.metrics.solids import bounds_in_frame, grown, union_mesh
 from recon.metrics.truth import TRUTH_FORMAT, TruthObject, TruthPart, TruthScene, read_truth, truth_from_dict
 from recon.metrics.unit_box import UnitBox, unit_box_from_truth
@@ -42,6 +45,7 @@ __all__ = [
     "compare_joints",
     "average_precision", "contact_edge_ap", "mean_average_precision", "undirected_scores",
     "ObjectEstimate", "estimate_from_reconstruction",
+    "PartMetrics", "PartStatus", "evaluate_parts",
     "union_mesh", "bounds_in_frame", "grown",
     "TRUTH_FORMAT", "TruthScene", "TruthObject", "TruthPart", "read_truth", "truth_from_dict",
     "UnitBox", "unit_box_from_truth",

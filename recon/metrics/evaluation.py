@@ -129,6 +129,7 @@ class JointSummary:
 
     n_joints: int
     type_accuracy: float
+    parent_accuracy: float
     n_movable: int
     median_axis_error_deg: float
     median_axis_error_unsigned_deg: float
@@ -144,7 +145,7 @@ def _median(values: list[float]) -> float:
 
 
 def joint_summary(comparisons: Iterable[JointComparison]) -> JointSummary:
-    """Pool joint comparisons: type accuracy over all true joints (missing = wrong); axis-error medians
+    """Pool joint comparisons: type and parent accuracy over all true joints (missing = wrong); axis-error medians
     over true movable joints whose estimate is movable; hinge medians over revolute-revolute pairs."""
     c = list(comparisons)
     movable = [x for x in c if x.true_type != "fixed"]
@@ -152,6 +153,7 @@ def joint_summary(comparisons: Iterable[JointComparison]) -> JointSummary:
     return JointSummary(
         n_joints=len(c),
         type_accuracy=float(np.mean([x.type_correct for x in c])) if c else NAN,
+        parent_accuracy=float(np.mean([x.parent_correct for x in c])) if c else NAN,
         n_movable=len(movable),
         median_axis_error_deg=_median([x.axis_error_deg for x in movable]),
         median_axis_error_unsigned_deg=_median([x.axis_error_unsigned_deg for x in movable]),

@@ -5,6 +5,7 @@ between two parts (a root's joint to the world, ``parent_part_id is None``, is n
 
 - *type correct*: an estimated joint with the same child exists and has the same type (a missing
   estimate counts as wrong);
+- *parent correct*: that estimated joint also has the true parent part (the part tree's edge is right);
 - *axis error* (both movable): the angle between the axes, sign-aware, in degrees, in [0, 180]. Under
   the positive-opens convention a flipped axis opens the wrong way, so it counts as 180 deg; the
   *unsigned* angle ``min(a, 180 - a)`` is reported too;
@@ -85,6 +86,7 @@ class JointComparison:
     hinge_distance_m: float
     upper_error: float
     lower_error: float
+    parent_correct: bool = False
 
     @property
     def type_correct(self) -> bool:
@@ -120,5 +122,5 @@ def compare_joints(truth: Sequence[JointEstimate], estimate: Sequence[JointEstim
             upper = abs(e.upper - t.upper)
             lower = abs(e.lower - t.lower)
         out.append(JointComparison(t.name, t.child_part_id, t.type.value, e.type.value, JointMatch.MATCHED,
-                                   axis, unsigned, hinge, upper, lower))
+                                   axis, unsigned, hinge, upper, lower, e.parent_part_id == t.parent_part_id))
     return tuple(out)

@@ -35,6 +35,8 @@ class ObjectEstimate:
         scores, directed or undirected (see :mod:`recon.metrics.kinematic_ap`); empty for a method
         without parts, whose AP is then 0 for every object with true edges
     seconds : wall time spent reconstructing this object (``nan`` if unknown)
+    part_ids : the scan part id of each primitive, parallel to ``primitives`` (empty when the method
+        has no parts); used only by the per-part diagnostics (:mod:`recon.metrics.part_errors`)
     """
 
     object_id: int
@@ -43,6 +45,7 @@ class ObjectEstimate:
     joints: tuple[JointEstimate, ...] = ()
     contact_scores: Mapping[tuple[int, int], float] = field(default_factory=dict)
     seconds: float = float("nan")
+    part_ids: tuple[int, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "object_id", int(self.object_id))
@@ -58,6 +61,10 @@ class ObjectEstimate:
         for j in self.joints:
             if not isinstance(j, JointEstimate):
                 raise EstimateError(f"{where}: joints must be recon.JointEstimate, got {type(j).__name__}")
+        part_ids = tuple(int(i) for i in self.part_ids)
+        if part_ids and len(part_ids) != len(prims):
+            raise EstimateError(f"{where}: {len(part_ids)} part ids for {len(prims)} primitives")
+        object.__setattr__(self, "part_ids", part_ids)
         object.__setattr__(self, "primitives", prims)
         object.__setattr__(self, "joints", tuple(self.joints))
         scores = {(int(p), int(q)): float(s) for (p, q), s in dict(self.contact_scores).items()}
@@ -69,4 +76,4 @@ def estimate_from_reconstruction(obj: ObjectReconstruction, seconds: float = flo
     (the world joint of the root is kept; it matches no true joint) and every Eq. 1 contact with its
     score (not only the tree edges: the AP ranks all of them)."""
     return ObjectEstimate(obj.id, obj.category, tuple(p.primitive for p in obj.parts), tuple(obj.joints),
-                          obj.contact_edges_undirected(), seconds)
+                          obj.contact_edges_undirected(), seconds, tuple(p.part_id for p in obj.parts))

@@ -97,6 +97,7 @@ def test_compare_joints_matches_by_child_and_scores_each_case():
              joint(14, "fixed", (0, 0, 0), name="cabinet3_handle14_joint"),
              joint(15, "revolute", (0, 0, -1), (0.4, 0.3, 0.0), upper=1.6))
     est = (joint(12, "prismatic", (-1, 0, 0), (9, 9, 9), upper=0.30),        # flipped axis, origin irrelevant
+           JointEstimate("cabinet3_handle14_joint", JointType.FIXED, 12, 14, np.zeros(3), np.zeros(3)),  # wrong parent
            joint(13, "revolute", (0, 0, 1), (0.4, -0.27, 0.0), upper=1.2),   # hinge 3 cm off
            joint(15, "prismatic", (1, 0, 0), upper=0.3))                     # wrong type
     centres = {12: np.array([0.4, 0, 0.5]), 13: np.array([0.4, -0.1, 0.5]), 14: np.zeros(3),
@@ -107,10 +108,13 @@ def test_compare_joints_matches_by_child_and_scores_each_case():
     assert np.isnan(rows[12].hinge_distance_m) and rows[12].upper_error == pytest.approx(0.05)
     assert rows[13].type_correct and rows[13].hinge_distance_m == pytest.approx(0.03)
     assert rows[13].upper_error == pytest.approx(0.4)
-    assert rows[14].match is JointMatch.MISSING and not rows[14].type_correct
+    assert rows[14].type_correct and not rows[14].parent_correct          # fixed, but to the drawer 12
+    assert rows[12].parent_correct and rows[13].parent_correct
     assert not rows[15].type_correct and rows[15].axis_error_deg == pytest.approx(90.0)
     assert np.isnan(rows[15].hinge_distance_m) and np.isnan(rows[15].upper_error)
     s = joint_summary(rows.values())
-    assert s.n_joints == 4 and s.type_accuracy == pytest.approx(0.5)
+    assert s.n_joints == 4 and s.type_accuracy == pytest.approx(0.75) and s.parent_accuracy == pytest.approx(0.75)
+    missing = compare_joints(truth, est[:1], centres)
+    assert [r.match for r in missing] == [JointMatch.MATCHED] + [JointMatch.MISSING] * 3
     assert s.n_movable == 3 and s.median_axis_error_deg == pytest.approx(90.0)
     assert s.n_revolute == 2 and s.median_hinge_distance_m == pytest.approx(0.03)

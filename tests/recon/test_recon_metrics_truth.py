@@ -148,3 +148,26 @@ def test_solid_box_for_a_hollow_cabinet_is_penalised_and_a_wrong_joint_is_caught
     assert row.ap == pytest.approx((0 + 1 / 2) / 2)   # false edge first, one true edge never found
     drawer = [j for j in row.joints if j.child_part_id == 12][0]
     assert not drawer.type_correct and drawer.axis_error_deg == pytest.approx(90.0)
+
+
+def test_part_diagnostics_point_at_the_part_that_is_off():
+    from recon.metrics import PartStatus, evaluate_parts
+
+    cab = truth_from_dict(cabinet_truth()).object(3)
+    prims, ids = [], []
+    for part in cab.parts:
+        if part.id == 13:
+            continue                                               # the handle is not estimated
+        for p in part.primitives:
+            shift = np.eye(4)
+            if part.id == 12:
+                shift[:3, 3] = [0.05, 0.0, 0.0]                    # the drawer sticks out 5 cm
+            prims.append(p.transformed(shift))
+            ids.append(part.id)
+    est = ObjectEstimate(3, "cabinet", tuple(prims), part_ids=tuple(ids))
+    rows = {r.part_id: r for r in evaluate_parts(cab, est)}
+    assert rows[11].status is PartStatus.OK and rows[11].iou == 1.0 and rows[11].centre_error_m < 1e-12
+    assert rows[12].iou < 0.5 and rows[12].centre_error_m == pytest.approx(0.05)
+    assert rows[12].chamfer > 0.01 and rows[12].size_ratio == pytest.approx(1.0)
+    assert rows[13].status is PartStatus.MISSING and np.isnan(rows[13].iou)
+    assert evaluate_parts(cab, ObjectEstimate(3, "cabinet", tuple(prims))) == ()     # no part ids: no rows
