@@ -14,6 +14,12 @@ SMALL = dict(width=160, height=120, n_frames=24)
 
 
 @pytest.fixture(scope="session")
+def small():
+    """Overrides for a cheap scan (fewer, smaller frames)."""
+    return dict(SMALL)
+
+
+@pytest.fixture(scope="session")
 def kitchen():
     return build_scene("kitchen", 0)
 
