@@ -99,6 +99,7 @@ def _write_json_atomic(path: Path, doc: dict) -> None:
     with os.fdopen(fd, "w") as fh:
         json.dump(doc, fh, indent=2)
         fh.write("\n")
+    os.chmod(tmp, 0o644)
     os.replace(tmp, path)
 
 

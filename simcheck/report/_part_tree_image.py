@@ -78,6 +78,18 @@ def _layout(g: nx.DiGraph) -> dict[int, np.ndarray]:
     return {n: np.array([p[0], -p[1]]) for n, p in pos.items()}
 
 
+def _widest_layer(g: nx.DiGraph) -> int:
+    """Most parts at one depth of the tree."""
+    if g.number_of_nodes() == 0:
+        return 1
+    roots = [n for n in g.nodes if g.in_degree(n) == 0] or [next(iter(g.nodes))]
+    counts: dict[int, int] = {}
+    for root in roots:
+        for _, d in nx.single_source_shortest_path_length(g, root).items():
+            counts[d] = counts.get(d, 0) + 1
+    return max(counts.values())
+
+
 def _draw_tree(ax, tree: PartTree, title: str) -> None:
     g = tree.graph
     if g.number_of_nodes() == 0:
@@ -97,7 +109,7 @@ def _draw_tree(ax, tree: PartTree, title: str) -> None:
                                node_size=900)
     edge_labels = {(u, v): d["type"] + ("" if d["score"] is None else f"\n{d['score']:.2f}")
                    for u, v, d in g.edges(data=True)}
-    nx.draw_networkx_edge_labels(g, pos, edge_labels=edge_labels, ax=ax, font_size=7, rotate=False,
+    nx.draw_networkx_edge_labels(g, pos, edge_labels=edge_labels, ax=ax, font_size=7, rotate=False, label_pos=0.7,
                                  bbox={"boxstyle": "round", "fc": "white", "ec": "none", "alpha": 0.8})
     ax.set_title(title, fontsize=10)
     ax.margins(0.2)
@@ -105,8 +117,10 @@ def _draw_tree(ax, tree: PartTree, title: str) -> None:
 
 
 def png_of_part_trees(panels: Sequence[tuple[str, PartTree]], panel_in: float = 3.6) -> bytes:
-    """One PNG with a tree per ``(title, tree)`` side by side (e.g. estimate beside truth)."""
-    fig = new_figure(panel_in * len(panels), panel_in)
+    """One PNG with a tree per ``(title, tree)`` side by side (e.g. estimate beside truth); a panel is
+    wider when a layer of its tree has many parts."""
+    widest = max([_widest_layer(t.graph) for _, t in panels] + [1])
+    fig = new_figure(max(panel_in, 1.15 * widest) * len(panels), panel_in)
     for i, (title, tree) in enumerate(panels):
         _draw_tree(fig.add_subplot(1, len(panels), i + 1), tree, title)
     return png_from_figure(fig)

@@ -189,6 +189,7 @@ def render_report(demo_dir: str | os.PathLike, out_html: str | os.PathLike | Non
     fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=".report-", suffix=".html")
     with os.fdopen(fd, "w", encoding="utf-8") as fh:
         fh.write(html)
+    os.chmod(tmp, 0o644)  # mkstemp makes it private; a report is for reading
     os.replace(tmp, out)
     log.info("report: wrote %s (%.0f kB) in %.1f s", out, out.stat().st_size / 1e3, time.perf_counter() - t0)
     return out

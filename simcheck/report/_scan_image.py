@@ -11,7 +11,7 @@ from matplotlib.lines import Line2D
 
 from ._errors import ArtifactError
 from ._figure import colour_of_label, new_figure, png_from_figure
-from ._scene_image import VIEW_AZIM_DEG, VIEW_ELEV_DEG
+from ._scene_image import set_view
 
 __all__ = ["ScanPoints", "load_scan", "png_of_scan", "MAX_DRAWN_POINTS"]
 
@@ -52,6 +52,18 @@ def load_scan(npz_path: str | Path, labels_path: str | Path) -> ScanPoints:
     return ScanPoints(points, part_id, object_id, label_of_part)
 
 
+#: Margin (m) around the labelled points that is still drawn (walls and floor beyond it are cut away).
+VIEW_MARGIN = 0.05
+
+
+def view_bounds(points: np.ndarray, part_id: np.ndarray) -> np.ndarray:
+    """(2, 3) world box of the labelled points (part_id >= 0) grown by :data:`VIEW_MARGIN`, metres."""
+    labelled = points[part_id >= 0] if np.any(part_id >= 0) else points
+    if len(labelled) == 0:
+        return np.array([[-0.5, -0.5, 0.0], [0.5, 0.5, 1.0]])
+    return np.stack([labelled.min(axis=0) - VIEW_MARGIN, labelled.max(axis=0) + VIEW_MARGIN])
+
+
 def png_of_scan(scan: ScanPoints, seed: int = 0, panel_in: float = 5.5) -> bytes:
     """Two panels: every part in its own colour, and points coloured by their part's label."""
     rng = np.random.default_rng(seed)
@@ -72,20 +84,20 @@ def png_of_scan(scan: ScanPoints, seed: int = 0, panel_in: float = 5.5) -> bytes
         if label not in labels_seen:
             labels_seen.append(label)
 
-    fig = new_figure(2 * panel_in, panel_in)
-    lo, hi = (pts.min(axis=0), pts.max(axis=0)) if len(pts) else (np.zeros(3), np.ones(3))
-    centre, half = (lo + hi) / 2, max(float(np.max(hi - lo)) / 2, 0.1)
+    fig = new_figure(2 * panel_in, 0.8 * panel_in)
+    fig.subplots_adjust(left=0, right=1, bottom=0, top=0.93, wspace=0.02)
+    bounds = view_bounds(scan.points, scan.part_id)
+    inside = np.all((pts >= bounds[0]) & (pts <= bounds[1]), axis=1)
+    pts, by_part, by_label, pid_in = pts[inside], by_part[inside], by_label[inside], pid[inside]
     for i, (title, colours) in enumerate([(f"scan by part ({len(parts)} parts, {n} points)", by_part),
                                           ("scan by part label", by_label)]):
         ax = fig.add_subplot(1, 2, i + 1, projection="3d")
-        ax.scatter(pts[:, 0], pts[:, 1], pts[:, 2], c=colours, s=0.6, marker=".", linewidths=0,
+        bg = pid_in < 0  # unlabelled points: faint context
+        ax.scatter(pts[bg, 0], pts[bg, 1], pts[bg, 2], c=[_BACKGROUND], s=0.3, alpha=0.3, marker=".",
+                   linewidths=0, depthshade=False)
+        ax.scatter(pts[~bg, 0], pts[~bg, 1], pts[~bg, 2], c=colours[~bg], s=1.2, marker=".", linewidths=0,
                    depthshade=False)
-        ax.set_xlim(centre[0] - half, centre[0] + half)
-        ax.set_ylim(centre[1] - half, centre[1] + half)
-        ax.set_zlim(max(0.0, centre[2] - half), max(0.0, centre[2] - half) + 2 * half)
-        ax.set_box_aspect((1, 1, 1))
-        ax.view_init(elev=VIEW_ELEV_DEG, azim=VIEW_AZIM_DEG)
-        ax.set_axis_off()
+        set_view(ax, bounds)
         ax.set_title(title, fontsize=11)
     handles = [Line2D([], [], marker="o", linestyle="", color=colour_of_label(lb), label=lb or "(none)")
                for lb in sorted(labels_seen)]

@@ -32,14 +32,22 @@ def draw_solids(ax, solids: Sequence[Solid], bounds: np.ndarray | None = None) -
         # edges in the face colour hide the hairline seams antialiasing leaves between facets
         coll = Poly3DCollection(polys, facecolors=rgb, edgecolors=rgb, linewidths=0.3)
         ax.add_collection3d(coll)
-    if bounds is None:
-        bounds = scene_bounds(solids)
-    lo, hi = bounds
-    centre, half = (lo + hi) / 2, max(float(np.max(hi - lo)) / 2, 0.1)
-    ax.set_xlim(centre[0] - half, centre[0] + half)
-    ax.set_ylim(centre[1] - half, centre[1] + half)
-    ax.set_zlim(max(0.0, centre[2] - half), max(0.0, centre[2] - half) + 2 * half)
-    ax.set_box_aspect((1, 1, 1))
+    set_view(ax, scene_bounds(solids) if bounds is None else bounds)
+
+
+#: Zoom of the 3-D axes box (matplotlib leaves wide margins around it at 1.0).
+VIEW_ZOOM = 1.0
+
+
+def set_view(ax, bounds: np.ndarray) -> None:
+    """Equal-scale 3-D view of the world box ``bounds`` (2, 3) metres (z from the floor up), no axes."""
+    lo, hi = np.array(bounds[0], dtype=float), np.array(bounds[1], dtype=float)
+    lo[2] = min(lo[2], 0.0)
+    hi = np.maximum(hi, lo + 0.1)
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_zlim(lo[2], hi[2])
+    ax.set_box_aspect(tuple(hi - lo), zoom=VIEW_ZOOM)
     ax.view_init(elev=VIEW_ELEV_DEG, azim=VIEW_AZIM_DEG)
     ax.set_axis_off()
 
@@ -78,7 +86,8 @@ def png_of_scenes(panels: Sequence[tuple[str, Sequence[Solid]]], panel_in: float
     """One PNG with a 3-D panel per ``(title, solids)``, all drawn in the same view box."""
     all_solids = [s for _, solids in panels for s in solids]
     bounds = scene_bounds(all_solids)
-    fig = new_figure(panel_in * len(panels), panel_in)
+    fig = new_figure(panel_in * len(panels), 0.8 * panel_in)
+    fig.subplots_adjust(left=0, right=1, bottom=0, top=0.93, wspace=0.02)
     for i, (title, solids) in enumerate(panels):
         ax = fig.add_subplot(1, len(panels), i + 1, projection="3d")
         draw_solids(ax, solids, bounds)
