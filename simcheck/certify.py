@@ -157,8 +157,11 @@ class Session:
             problem = outcome.status in INPUT_PROBLEM_STATUSES
             amount = task.amount if task.amount is not None else default_amount(task.kind, est, state.get(task.joint, 0.0))
             timings["total"] = time.perf_counter() - t_all
-            return TaskCertificate(task.kind, task.joint, TaskStatus.NOT_PLANNED,
-                                   f"not planned ({outcome.status}): {outcome.reason}", float(amount), unit,
+            reason = f"not planned ({outcome.status}): {outcome.reason}"
+            hints = joint_differences(est, self.ref_joints.get(task.joint)) if self.against is not None else []
+            if hints:
+                reason += " -- estimate vs reference: " + "; ".join(hints)
+            return TaskCertificate(task.kind, task.joint, TaskStatus.NOT_PLANNED, reason, float(amount), unit,
                                    (plan_found(False, outcome.reason),), seed, timings, plan_status=outcome.status,
                                    input_problem=problem)
         plan = outcome.plan

@@ -44,12 +44,14 @@ def _save(tree, out) -> Path:
     return out
 
 
-def rotate_axis(src, joint: str, deg: float, out) -> Path:
+def rotate_axis(src, joint: str, deg: float, out, about: str = "z") -> Path:
+    """The joint axis rotated by ``deg`` about the joint frame's ``about`` axis ("z": sideways for an
+    upright object; "y": tilted up/down for a drawer sliding along x)."""
     tree = _load(src)
     j = _joint(tree.getroot(), joint)
     axis = j.find("axis")
     a = _vec(axis, "xyz", "1 0 0")
-    axis.set("xyz", _fmt(Rotation.from_euler("z", deg, degrees=True).apply(a)))
+    axis.set("xyz", _fmt(Rotation.from_euler(about, deg, degrees=True).apply(a)))
     return _save(tree, out)
 
 
@@ -146,3 +148,29 @@ def add_box(src, out, name: str, xyz, size) -> Path:
     ET.SubElement(jt, "child", link=name)
     ET.SubElement(jt, "origin", xyz=_fmt(xyz), rpy="0 0 0")
     return _save(tree, out)
+
+
+def blocker_in_swing(src, joint: str, out, angle_deg: float = 40.0, radius_fraction: float = 0.5,
+                     size=(0.12, 0.12, 0.15), name: str = "blocker99_box99") -> Path:
+    """The reference with a box a neighbour could be: in the swing of door ``joint``, ``angle_deg`` open,
+    at ``radius_fraction`` of the door's width from the hinge, level with the door's bottom edge
+    (below the handle, so it blocks the door rather than the robot)."""
+    from simcheck.scene_joints import read_scene_joints
+    from simcheck.world import World
+
+    tree = _load(src)
+    root = tree.getroot()
+    j = _joint(root, joint)
+    sj = read_scene_joints(src)[joint]
+    with World(src) as w:                                        # the door frame's world pose, closed
+        R_world_door = w.scene_link_pose(sj.child)[:3, :3]
+    edge_world = R_world_door @ _far_edge(root, j)               # hinge -> far edge, world frame
+    bottom = np.inf                                              # lowest door point (door frame z = world z)
+    for col in _child_link(root, j).findall("collision"):
+        box = col.find("geometry/box")
+        if box is not None:
+            bottom = min(bottom, _vec(col.find("origin"), "xyz")[2] - _vec(box, "size")[2] / 2)
+    swing = Rotation.from_rotvec(np.deg2rad(angle_deg) * sj.axis_world).apply(edge_world) * radius_fraction
+    centre = sj.origin_world + swing
+    centre[2] = sj.origin_world[2] + bottom + size[2] / 2
+    return add_box(src, out, name, centre, size)
