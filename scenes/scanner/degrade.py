@@ -36,14 +36,16 @@ def add_depth_noise(ranges: np.ndarray, base: float, quadratic: float, rng: np.r
     return ranges + rng.normal(0.0, 1.0, len(ranges)) * sigma
 
 
-def add_outliers(ranges: np.ndarray, rate: float, spread: float, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
-    """Move a ``rate`` fraction of ranges by U(-spread, spread); returns (ranges, (n,) bool is_outlier)."""
+def add_outliers(ranges: np.ndarray, rate: float, spread: float, rng: np.random.Generator,
+                 floor: float = 0.05) -> tuple[np.ndarray, np.ndarray]:
+    """Move a ``rate`` fraction of ranges by U(-spread, spread), not below ``floor`` metres;
+    returns (ranges, (n,) bool is_outlier)."""
     out = np.zeros(len(ranges), bool)
     if rate <= 0 or spread <= 0:
-        return ranges, out
+        return np.asarray(ranges, float).copy(), out
     out = rng.random(len(ranges)) < rate
-    r = ranges.copy()
-    r[out] = np.maximum(r[out] + rng.uniform(-spread, spread, out.sum()), 0.05)
+    r = np.asarray(ranges, float).copy()
+    r[out] = np.maximum(r[out] + rng.uniform(-spread, spread, out.sum()), floor)
     return r, out
 
 

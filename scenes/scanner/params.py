@@ -24,18 +24,19 @@ class ScanParams:
     ``path_inset`` metres inside the walls, camera height in ``camera_height`` (min, max) metres.
     Degradations (each off at 0): ``depth_noise_base`` m and ``depth_noise_quadratic`` 1/m (see the
     module doc); ``missing_rate`` probability a return is dropped; ``grazing_limit_deg``: returns whose
-    incidence angle exceeds it are dropped; ``outlier_rate``: fraction of returns moved along their ray
-    by U(-``outlier_range``, ``outlier_range``) m (flying pixels, keeping their label);
+    incidence angle exceeds it are dropped; ``outlier_rate``: fraction of the final (downsampled) points
+    moved along their ray by U(-``outlier_range``, ``outlier_range``) m (flying pixels, keeping their
+    label);
     ``label_flip_prob``: probability that a point within ``label_boundary_width`` m of another part of
     the same object takes that part's label. Downsampling: one real return is kept per ``voxel_size``
     cube on objects and per ``background_voxel`` cube on the floor/walls (0 = keep all).
     """
 
-    width: int = 320
-    height: int = 240
+    width: int = 256
+    height: int = 192
     fov_deg: float = 70.0
     max_range: float = 6.0
-    n_frames: int = 48
+    n_frames: int = 40
     path_inset: float = 1.0
     camera_height: tuple[float, float] = (1.2, 1.7)
     depth_noise_base: float = 0.0

@@ -101,26 +101,29 @@ def scan_scene(scene: Scene, params: ScanParams, seed: int = 0) -> Scan:
         o, d, t, mi, n = o[keep], d[keep], t[keep], mi[keep], n[keep]
         t_true = t
         t = degrade.add_depth_noise(t, params.depth_noise_base, params.depth_noise_quadratic, rng)
-        t, out = degrade.add_outliers(t, params.outlier_rate, params.outlier_range, rng)
         p = o + t[:, None] * d
         oid = mesh_obj[mi]
         # per-frame downsampling first keeps memory small; the merged cloud is downsampled again below
         fg, bg = np.flatnonzero(oid >= 0), np.flatnonzero(oid < 0)
         sel = np.concatenate([fg[degrade.voxel_keep(p[fg], params.voxel_size, rng)],
                               bg[degrade.voxel_keep(p[bg], params.background_voxel, rng)]])
-        chunks.append((p[sel], n[sel], d[sel], oid[sel], mesh_part[mi][sel], out[sel],
+        chunks.append((p[sel], n[sel], d[sel], oid[sel], mesh_part[mi][sel],
                        np.full(len(sel), k, np.int32), t_true[sel]))
     if not chunks or sum(len(c[0]) for c in chunks) == 0:
         raise ScanError(f"scan of scene {scene.name!r}: no camera ray hit anything")
-    pts, nrm, dirs, oid, pid, out, frame, rng_true = (np.concatenate(a) for a in zip(*chunks))
+    pts, nrm, dirs, oid, pid, frame, rng_true = (np.concatenate(a) for a in zip(*chunks))
     # downsample objects and background separately
     fg = np.flatnonzero(oid >= 0)
     bg = np.flatnonzero(oid < 0)
     keep = np.concatenate([fg[degrade.voxel_keep(pts[fg], params.voxel_size, rng)],
                            bg[degrade.voxel_keep(pts[bg], params.background_voxel, rng)]])
     keep.sort()
-    pts, nrm, dirs, oid, pid, out = pts[keep], nrm[keep], dirs[keep], oid[keep], pid[keep], out[keep]
+    pts, nrm, dirs, oid, pid = pts[keep], nrm[keep], dirs[keep], oid[keep], pid[keep]
     frame, rng_true = frame[keep], rng_true[keep]
+    # flying pixels after downsampling, so that outlier_rate is their fraction of the written cloud
+    shift, out = degrade.add_outliers(np.zeros(len(pts)), params.outlier_rate, params.outlier_range, rng,
+                                      floor=-np.inf)
+    pts = pts + shift[:, None] * dirs
     pid = degrade.flip_boundary_labels(pts, oid, pid, params.label_boundary_width, params.label_flip_prob, rng)
     rgba = [LABEL_RGBA.get(label_of.get(int(p), "wall"), (0.6, 0.6, 0.6, 1)) for p in pid]
     colors = _colors(rgba, nrm, dirs)
