@@ -60,6 +60,8 @@ class TaskCertificate:
         plan_status: the planner's status name ("OK", "NO_STAND_POSE", ...).
         input_problem: True when the task failed because its input was unusable (e.g. the object is
             unreachable): the CLI then exits with code 2.
+        start_state: values of the executed scene's movable joints when the task started (a scenario
+            carries them over from the previous task), rad or m by joint name.
     """
 
     kind: str
@@ -75,6 +77,7 @@ class TaskCertificate:
     images: tuple[str, ...] = ()
     plan_status: str = ""
     input_problem: bool = False
+    start_state: dict = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
@@ -94,7 +97,8 @@ class TaskCertificate:
     def to_dict(self) -> dict:
         return {"kind": self.kind, "joint": self.joint, "status": self.status.value, "reason": self.reason,
                 "amount": self.amount, "unit": self.unit, "seed": self.seed, "plan_status": self.plan_status,
-                "input_problem": self.input_problem, "timings": dict(self.timings), "rollout": self.rollout,
+                "input_problem": self.input_problem, "start_state": dict(self.start_state),
+                "timings": dict(self.timings), "rollout": self.rollout,
                 "images": list(self.images), "criteria": [c.to_dict() for c in self.criteria]}
 
     @classmethod
@@ -104,7 +108,7 @@ class TaskCertificate:
                    criteria=tuple(CriterionResult.from_dict(c) for c in d.get("criteria", [])),
                    seed=int(d.get("seed", 0)), timings=dict(d.get("timings", {})), rollout=d.get("rollout", ""),
                    images=tuple(d.get("images", [])), plan_status=d.get("plan_status", ""),
-                   input_problem=bool(d.get("input_problem", False)))
+                   input_problem=bool(d.get("input_problem", False)), start_state=dict(d.get("start_state", {})))
 
 
 @dataclass(frozen=True)

@@ -11,8 +11,8 @@ default calls ``planners.plan_open_task`` with ``planners.default_robot()``.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
-import math
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -290,7 +290,9 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
                 session.reset()
             start = session.exec_world.robot_q() if carry_state and i else None
             log.info("certifying %s on %s%s", task, scene, f" against {against}" if against else "")
+            state = session.exec_state()
             cert = session.run_task(task, planner, seed, criteria, out_dir, images, video, start=start)
+            cert = dataclasses.replace(cert, start_state=state)
             log.info("%s: %s -- %s", task, cert.status.value, cert.reason)
             results.append(cert)
     certificate = Certificate(tasks=tuple(results), scene=str(scene), against=str(against) if against else None,

@@ -1,0 +1,135 @@
+"""The ``simcheck`` CLI: exit codes 0 / 1 / 2 and messages that say why (some runs in a subprocess)."""
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from simcheck.cli import main
+from simcheck.errors import ScenarioError, TaskSpecError
+from simcheck.scenario import load_scenario
+from simcheck.tasks import Task, check_task, default_amount, parse_task, parse_tasks
+from simcheck.scene_joints import read_scene_joints
+
+import simcheck_wrong_estimates as wrong
+from simcheck_fixture_plans import DATA
+
+CAB = DATA / "panda_cabinet.urdf"
+DRAWER, DOOR, HANDLE = "cabinet1_drawer12_joint", "cabinet1_door14_joint", "cabinet1_handle13_joint"
+
+
+def _cli(*args, cwd):
+    env = dict(os.environ)
+    env.pop("DISPLAY", None)
+    return subprocess.run([sys.executable, "-m", "simcheck", *map(str, args)], capture_output=True, text=True,
+                          cwd=cwd, env=env, timeout=120)
+
+
+@pytest.mark.parametrize("task, message", [
+    (f"open-drawer:nope_joint", "has no joint 'nope_joint'"),
+    (f"open-drawer:{HANDLE}", f"joint '{HANDLE}' of .*panda_cabinet.urdf is fixed"),
+    (f"open-drawer:{DOOR}", "is revolute, a open-drawer task needs a prismatic joint"),
+])
+def test_bad_task_exits_2_with_a_message_in_a_subprocess(task, message, tmp_path):
+    p = _cli("certify", CAB, "--task", task, "--out", tmp_path / "out", cwd=tmp_path)
+    assert p.returncode == 2, p.stderr
+    import re
+    assert re.search(message, p.stderr), p.stderr
+    assert not (tmp_path / "out" / "certificate.json").exists()
+
+
+def test_broken_urdf_exits_2_in_a_subprocess(tmp_path):
+    broken = tmp_path / "broken.urdf"
+    broken.write_text("<robot name='x'><link name='a'>")
+    p = _cli("certify", broken, "--task", "open-drawer:j", cwd=tmp_path)
+    assert p.returncode == 2 and "broken.urdf is not valid XML" in p.stderr, p.stderr
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["certify", "missing.urdf", "--task", f"open-drawer:{DRAWER}"], "missing.urdf does not exist"),
+    (["certify", str(CAB)], "no task given"),
+    (["certify", str(CAB), "--task", f"close-drawer:{DRAWER}"], "kind must be one of"),
+    (["certify", str(CAB), "--task", f"open-drawer:{DRAWER}", "--amount", "0.1", "--amount", "0.2"], "2 amounts for 1 tasks"),
+    (["certify", str(CAB), "--task", f"open-drawer:{DRAWER}", "--robot", "nope.yaml"], "robot spec nope.yaml does not exist"),
+    (["certify", str(CAB), "--task", f"open-drawer:{DRAWER}", "--gui"], "needs a display"),
+    (["certify", str(CAB), "--task", f"open-drawer:{DRAWER}", "--against", "gone.urdf"], "gone.urdf does not exist"),
+    (["run", "nothing.yaml"], "scenario nothing.yaml does not exist"),
+])
+def test_unusable_input_exits_2_and_says_why(argv, message, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    assert main(argv + ["--out", str(tmp_path / "o")]) == 2
+    assert message in capsys.readouterr().err
+
+
+def test_unreachable_object_exits_2(tmp_path, capsys):
+    high = tmp_path / "high.urdf"
+    high.write_text(CAB.read_text().replace('<origin xyz="1.5 0 0" rpy="0 0 3.141593"/>',
+                                            '<origin xyz="1.5 0 2.6" rpy="0 0 3.141593"/>'))
+    assert main(["certify", str(high), "--task", f"open-drawer:{DRAWER}", "--out", str(tmp_path / "o"), "--no-images"]) == 2
+    err = capsys.readouterr().err
+    assert "cannot be certified" in err and DRAWER in err
+    doc = json.loads((tmp_path / "o" / "certificate.json").read_text())
+    assert doc["tasks"][0]["status"] == "not-planned" and doc["tasks"][0]["input_problem"]
+
+
+def test_certified_drawer_exits_0_and_writes_the_certificate(tmp_path, capsys):
+    assert main(["certify", str(CAB), "--task", f"open-drawer:{DRAWER}", "--out", str(tmp_path), "--seed", "3"]) == 0
+    doc = json.loads((tmp_path / "certificate.json").read_text())
+    assert doc["ok"] and doc["seeds"] == {"seed": 3} and doc["tasks"][0]["status"] == "certified"
+    assert (tmp_path / doc["tasks"][0]["rollout"]).is_file()
+    assert all((tmp_path / p).is_file() for p in doc["tasks"][0]["images"])
+    assert "certified" in capsys.readouterr().out
+
+
+def test_wrong_estimate_against_the_truth_exits_1(tmp_path):
+    est = wrong.widen_limits(CAB, DRAWER, 1.5, tmp_path / "wide.urdf")
+    before = CAB.read_bytes()
+    assert main(["certify", str(est), "--task", f"open-drawer:{DRAWER}", "--against", str(CAB),
+                 "--out", str(tmp_path / "o"), "--no-images"]) == 1
+    assert CAB.read_bytes() == before                      # inputs are never modified
+    doc = json.loads((tmp_path / "o" / "certificate.json").read_text())
+    assert doc["against"] == str(CAB) and doc["tasks"][0]["status"] == "failed"
+
+
+def test_scenario_runs_tasks_in_sequence_with_the_world_state_carried(tmp_path):
+    (tmp_path / "scene.urdf").write_bytes(CAB.read_bytes())
+    sc = tmp_path / "scenario.yaml"
+    sc.write_text(f"scene: scene.urdf\nseed: 1\ntasks:\n  - {{kind: open-door, joint: {DOOR}, amount: 1.2}}\n"
+                  f"  - open-drawer:{DRAWER}\n")
+    code = main(["run", str(sc), "--out", str(tmp_path / "o"), "--no-images"])
+    doc = json.loads((tmp_path / "o" / "certificate.json").read_text())
+    assert code == 0, [t["reason"] for t in doc["tasks"]]
+    first, second = doc["tasks"]
+    assert first["start_state"][DOOR] == pytest.approx(0.0, abs=1e-3)
+    # the door opened by the first task is still open when the second starts
+    assert second["start_state"][DOOR] == pytest.approx(1.2, abs=0.05)
+    assert first["amount"] == pytest.approx(1.2) and doc["seeds"] == {"seed": 1}
+
+
+def test_scenario_errors_name_the_file_and_field(tmp_path):
+    sc = tmp_path / "bad.yaml"
+    sc.write_text("scene: x.urdf\n")
+    with pytest.raises(ScenarioError, match=r"bad.yaml: field 'tasks' must be a non-empty list"):
+        load_scenario(sc)
+    sc.write_text("scene: x.urdf\ntasks: [{joint: j}]\n")
+    with pytest.raises(ScenarioError, match=r"bad.yaml: tasks\[0\] needs 'kind' and 'joint'"):
+        load_scenario(sc)
+    sc.write_text("tasks: [open-drawer:j]\n")
+    with pytest.raises(ScenarioError, match="field 'scene' is missing"):
+        load_scenario(sc)
+
+
+def test_task_parsing_and_default_amounts():
+    assert parse_task(f"open-drawer:{DRAWER}=0.2") == Task("open-drawer", DRAWER, 0.2)
+    assert [t.amount for t in parse_tasks(["open-drawer:a", "open-door:b"], [0.3])] == [0.3, 0.3]
+    with pytest.raises(TaskSpecError, match="amount must be a positive number"):
+        parse_task("open-drawer:a=-1")
+    joints = read_scene_joints(CAB)
+    assert default_amount("open-drawer", check_task(Task("open-drawer", DRAWER), CAB, joints)) == pytest.approx(0.315)
+    # a door's default is capped at 90 degrees (range 1.9 rad)
+    assert default_amount("open-door", check_task(Task("open-door", DOOR), CAB, joints)) == pytest.approx(1.5707963)
+    assert joints[DOOR].axis_world == pytest.approx([0, 0, -1]) and joints[DOOR].origin_world == pytest.approx([1.25, 0.38, 0])
