@@ -2,9 +2,10 @@
 truth, like Tables I and II of the paper, plus joint errors, timings and the issue's targets.
 
     python -m bench.recon_bench [--scenes kitchen,bedroom,office] [--random 20] [--preset clean,realistic]
-                                [--out DIR] [--samples 10000] [--fresh] [--json FILE]
+                                [--room10 1] [--out DIR] [--samples 10000] [--fresh] [--json FILE]
 
-For every scene (the built-in ones with seed 0, and ``random`` with seeds 0..N-1) and every scan preset,
+For every scene (the built-in ones with seed 0, ``random`` with seeds 0..N-1, and ``--room10`` rooms of
+10 objects composed here for the speed target) and every scan preset,
 the scene is made and scanned by ``scenes.make_scene`` (cached in ``--out``, reused unless ``--fresh``),
 both methods run on the same ``scan.ply`` + ``labels.json``, and ``recon.metrics.evaluate_scene`` scores
 both against ``truth.json``. Tables go to stdout; progress to stderr. Exit 0 when every target is met,
@@ -56,7 +57,7 @@ class Case:
 
     @property
     def label(self) -> str:
-        return self.scene if self.scene != "random" else f"random/{self.seed}"
+        return self.scene if self.scene not in ("random", "room10") else f"{self.scene}/{self.seed}"
 
 
 def _make(scene: str, seed: int, preset: str, root: Path, fresh: bool) -> Path:
@@ -65,6 +66,44 @@ def _make(scene: str, seed: int, preset: str, root: Path, fresh: bool) -> Path:
     out = root / f"{scene}_{seed}_{preset}"
     if fresh or not all((out / f).is_file() for f in ("truth.json", "scan.ply", "labels.json")):
         make_scene(scene, seed=seed, preset=preset, out=out, previews=False)
+    return out
+
+
+def _room10(seed: int):
+    """A 10-object room for the speed target (none of the built-in recipes has 10 objects): three
+    cabinets (one with a microwave on it), a refrigerator, a bed, a table with four chairs."""
+    from scenes.composer import RoomComposer
+    from scenes.generators import make_bed, make_cabinet, make_chair, make_microwave, make_refrigerator, make_table
+
+    last = None
+    for attempt in range(8):
+        rng = np.random.default_rng([seed, attempt, 10])
+        c = RoomComposer("room10", seed, (7.5, 6.5), rng)
+        try:
+            cab = c.against_wall(make_cabinet(rng))
+            c.on_top(make_microwave(rng), cab)
+            c.against_wall(make_cabinet(rng))
+            c.against_wall(make_cabinet(rng))
+            c.against_wall(make_refrigerator(rng))
+            c.against_wall(make_bed(rng))
+            table = c.in_open(make_table(rng))
+            if len(c.around([make_chair(rng, arms=False) for _ in range(4)], table)) == 4:
+                return c.build()
+        except Exception as exc:  # placement failed: next attempt
+            last = exc
+    raise RuntimeError(f"room10 seed {seed}: no layout with 10 objects in 8 attempts ({last})")
+
+
+def _make_room10(seed: int, preset: str, root: Path, fresh: bool) -> Path:
+    from scenes.scan_io import write_scan
+    from scenes.scanner import params_for_preset, scan_scene
+    from scenes.truth_json import write_truth_json
+
+    out = root / f"room10_{seed}_{preset}"
+    if fresh or not all((out / f).is_file() for f in ("truth.json", "scan.ply", "labels.json")):
+        scene = _room10(seed)
+        write_truth_json(scene, out / "truth.json")
+        write_scan(scan_scene(scene, params_for_preset(preset), seed), out)
     return out
 
 
@@ -77,7 +116,7 @@ def run_case(scene: str, seed: int, preset: str, root: Path, samples: int, fresh
 
     case = Case(scene, seed, preset)
     try:
-        d = _make(scene, seed, preset, root, fresh)
+        d = _make_room10(seed, preset, root, fresh) if scene == "room10" else _make(scene, seed, preset, root, fresh)
         truth = read_truth(d / "truth.json")
         cfg = MetricsConfig(chamfer_samples=samples, seed=seed)
         t0 = time.perf_counter()
@@ -305,6 +344,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--scenes", default="kitchen,bedroom,office", help="built-in scenes (seed 0), comma-separated")
     ap.add_argument("--random", type=int, default=20, help="random scenes, seeds 0..N-1")
     ap.add_argument("--preset", default="clean,realistic", help="scan presets, comma-separated")
+    ap.add_argument("--room10", type=int, default=1, help="10-object rooms for the speed target (seeds 0..N-1)")
     ap.add_argument("--out", default="out/bench_recon", help="where scenes are made and cached")
     ap.add_argument("--samples", type=int, default=10_000, help="Chamfer surface samples per side")
     ap.add_argument("--fresh", action="store_true", help="remake scenes even if cached")
@@ -314,7 +354,8 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(level=logging.INFO if args.verbose else logging.ERROR, stream=sys.stderr,
                         format="%(levelname)s %(name)s: %(message)s")
     presets = [p for p in args.preset.split(",") if p]
-    scenes = [(s, 0) for s in args.scenes.split(",") if s] + [("random", k) for k in range(args.random)]
+    scenes = [(s, 0) for s in args.scenes.split(",") if s] + [("random", k) for k in range(args.random)] + \
+        [("room10", k) for k in range(args.room10)]
     if not scenes or not presets:
         print("recon_bench: nothing to run (no scenes or no presets)", file=sys.stderr)
         return 2
