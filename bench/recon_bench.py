@@ -257,6 +257,24 @@ def table_parts(cases: list[Case], presets: list[str]) -> None:
                   "med volume ratio"], rows)
 
 
+def wrong_joints(cases: list[Case], preset: str, n: int = 10) -> None:
+    """Part-level joints whose type or parent is wrong: counts by (true -> estimated) and the first few."""
+    counts: dict[str, int] = {}
+    rows = []
+    for c in cases:
+        if c.preset == preset and not c.error:
+            for o in c.metrics[PART].objects:
+                for j in o.joints:
+                    if not (j.type_correct and j.parent_correct):
+                        key = f"{j.true_type} -> {j.est_type or 'missing'}" + ("" if j.parent_correct else ", wrong parent")
+                        counts[key] = counts.get(key, 0) + 1
+                        rows.append([c.label, j.name, j.true_type, j.est_type or "missing",
+                                     "yes" if j.parent_correct else "no"])
+    _print_table(f"Wrong part-level joints ({preset}): " + (", ".join(f"{k}: {v}" for k, v in sorted(counts.items()))
+                                                           or "none"),
+                 ["scene", "joint", "true", "estimated", "parent ok"], rows[:n])
+
+
 def worst_objects(cases: list[Case], preset: str, n: int = 8) -> None:
     rows = []
     for c in cases:
@@ -382,6 +400,7 @@ def main(argv: list[str] | None = None) -> int:
     table_parts(cases, presets)
     for p in presets:
         worst_objects(cases, p)
+        wrong_joints(cases, p)
     results = targets(cases, presets)
     _print_table("Issue targets", ["target", "met", "evidence"],
                  [[t, "MET" if ok else "MISSED", ev] for t, ok, ev in results])
