@@ -36,7 +36,7 @@ import numpy as np
 
 from simcheck.report import DemoLayout, render_report
 
-__all__ = ["DemoConfig", "StageStatus", "StageRecord", "DemoResult", "TaskChoice", "choose_tasks", "run_demo",
+__all__ = ["DemoConfig", "StageStatus", "StageRecord", "DemoResult", "TaskChoice", "choose_tasks", "usable_tasks", "run_demo",
            "main"]
 
 log = logging.getLogger("simcheck.demo")
@@ -228,16 +228,34 @@ def _stage_metrics(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
             f"{s.get('type_accuracy')}")
 
 
+def usable_tasks(choice: TaskChoice, scene_urdf: Path) -> TaskChoice:
+    """``choice`` without the tasks simcheck would reject as input on ``scene_urdf`` (a joint with no
+    opening range, or of the wrong type for the task), each named with simcheck's reason in ``reason``."""
+    parse_task = _api("simcheck.tasks", "parse_task")
+    check_task = _api("simcheck.tasks", "check_task")
+    read_scene_joints = _api("simcheck.scene_joints", "read_scene_joints")
+    input_error = _api("simcheck.errors", "TaskSpecError")
+    joints = read_scene_joints(scene_urdf)
+    kept, left_out = [], [choice.reason] if choice.reason else []
+    for kind, joint in choice.tasks:
+        try:
+            check_task(parse_task(f"{kind}:{joint}"), scene_urdf, joints)
+            kept.append((kind, joint))
+        except input_error as exc:
+            left_out.append(f"{joint} (rejected: {exc})")
+    return TaskChoice(tuple(kept), "; ".join(left_out))
+
+
 def _stage_tasks(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
     truth = json.loads(lay.truth_json.read_text())
     graph = json.loads(lay.graph_json.read_text())
-    choice: TaskChoice = choose_tasks(truth, graph, cfg.max_drawers, cfg.max_doors)
+    choice = usable_tasks(choose_tasks(truth, graph, cfg.max_drawers, cfg.max_doors), lay.scene_urdf)
     state["tasks"] = choice
     if not choice.tasks:
-        raise RuntimeError(f"no drawer or door of {lay.truth_json} has a movable joint of the same name in "
-                           f"{lay.graph_json}: {choice.reason}")
+        raise RuntimeError(f"no drawer or door of {lay.truth_json} can be certified on {lay.scene_urdf}: "
+                           f"{choice.reason}")
     return "; ".join(f"{kind}:{joint}" for kind, joint in choice.tasks) + (
-        f" ({choice.reason})" if choice.reason else "")
+        f" -- left out: {choice.reason}" if choice.reason else "")
 
 
 def _stage_certify(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:

@@ -8,11 +8,14 @@ Nothing is simulated here: each frame places the robot at ``rollout.robot_q[i]``
 from __future__ import annotations
 
 import logging
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
 from simcheck.rollout import Rollout
+
+from ._primitives import Solid, solids_from_urdf
 
 __all__ = ["key_frame_indices", "key_frame_images", "camera_for", "FRAME_SIZE"]
 
@@ -22,6 +25,8 @@ log = logging.getLogger(__name__)
 FRAME_SIZE = (400, 300)
 #: Camera distance from the handle (m), height above it (m) and angle off the opening direction (deg).
 CAMERA_DISTANCE, CAMERA_HEIGHT, CAMERA_ANGLE_DEG = 1.9, 1.0, 50.0
+#: The last metres of the line of sight before the handle that may cross parts (the drawer, the body).
+CLEARANCE = 0.3
 
 
 def key_frame_indices(rollout: Rollout) -> list[tuple[str, int]]:
@@ -40,11 +45,41 @@ def key_frame_indices(rollout: Rollout) -> list[tuple[str, int]]:
     return out
 
 
-def camera_for(rollout: Rollout) -> tuple[np.ndarray, np.ndarray]:
+def _segment_hits_box(a: np.ndarray, b: np.ndarray, solid: Solid) -> bool:
+    """True when the segment a -> b (world, metres) crosses the solid's oriented bounding box (slab test)."""
+    T = solid.T_world_shape
+    half = (np.array([2 * solid.size[0], 2 * solid.size[1], solid.size[2]]) if solid.kind != "box"
+            else solid.size) / 2
+    pa, pb = (T[:3, :3].T @ (a - T[:3, 3])), (T[:3, :3].T @ (b - T[:3, 3]))
+    d = pb - pa
+    t0, t1 = 0.0, 1.0
+    for k in range(3):
+        if abs(d[k]) < 1e-12:
+            if abs(pa[k]) > half[k]:
+                return False
+            continue
+        lo, hi = sorted(((-half[k] - pa[k]) / d[k], (half[k] - pa[k]) / d[k]))
+        t0, t1 = max(t0, lo), min(t1, hi)
+        if t0 > t1:
+            return False
+    return True
+
+
+def _blocked(eye: np.ndarray, target: np.ndarray, obstacles: Sequence[Solid]) -> bool:
+    """True when a solid lies between ``eye`` and the last :data:`CLEARANCE` metres before ``target``."""
+    v = target - eye
+    end = eye + v * max(0.0, 1.0 - CLEARANCE / max(np.linalg.norm(v), 1e-9))
+    return any(_segment_hits_box(eye, end, s) for s in obstacles)
+
+
+def camera_for(rollout: Rollout, obstacles: Sequence[Solid] = ()) -> tuple[np.ndarray, np.ndarray]:
     """``(target, eye)`` world points, metres: looking at the handle from in front of it and to the side.
 
     "In front" is the horizontal direction the handle moved (outwards for a drawer or a door); when it
-    did not move, the direction from the handle to the robot tool at the start.
+    did not move, the direction from the handle to the robot tool at the start. Candidate eyes are tried
+    from the preferred view (:data:`CAMERA_ANGLE_DEG` to the side, :data:`CAMERA_DISTANCE` away,
+    :data:`CAMERA_HEIGHT` up) outwards; the first whose line of sight no obstacle (e.g. a wall) blocks
+    is taken (the preferred one when all are blocked).
     """
     p = rollout.T_world_handle[:, :3, 3]
     target = p.mean(axis=0)
@@ -56,10 +91,17 @@ def camera_for(rollout: Rollout) -> tuple[np.ndarray, np.ndarray]:
     if np.linalg.norm(d) < 1e-6:
         d = np.array([1.0, 0.0, 0.0])
     d /= np.linalg.norm(d)
-    a = np.radians(CAMERA_ANGLE_DEG)
-    R = np.array([[np.cos(a), -np.sin(a), 0.0], [np.sin(a), np.cos(a), 0.0], [0.0, 0.0, 1.0]])
-    eye = target + CAMERA_DISTANCE * (R @ d) + np.array([0.0, 0.0, CAMERA_HEIGHT])
-    return target, eye
+    candidates = []
+    for dist_scale in (1.0, 0.75, 0.55):
+        for angle in (CAMERA_ANGLE_DEG, -CAMERA_ANGLE_DEG, 30.0, -30.0, 70.0, -70.0, 0.0):
+            a = np.radians(angle)
+            R = np.array([[np.cos(a), -np.sin(a), 0.0], [np.sin(a), np.cos(a), 0.0], [0.0, 0.0, 1.0]])
+            candidates.append(target + dist_scale * (CAMERA_DISTANCE * (R @ d)
+                                                     + np.array([0.0, 0.0, CAMERA_HEIGHT])))
+    for eye in candidates:
+        if not _blocked(eye, target, obstacles):
+            return target, eye
+    return target, candidates[0]
 
 
 def key_frame_images(rollout: Rollout, scene_urdf: str | Path, robot=None) -> list[tuple[str, np.ndarray]]:
@@ -75,7 +117,8 @@ def key_frame_images(rollout: Rollout, scene_urdf: str | Path, robot=None) -> li
         from planners import default_robot
         robot = default_robot()
     sim_robot = sim_robot_from_spec(robot)
-    target, eye = camera_for(rollout)
+    obstacles = [s for s in solids_from_urdf(scene_urdf) if s.link != rollout.handle_link]
+    target, eye = camera_for(rollout, obstacles)
     frames = []
     with World(scene_urdf, sim_robot) as world:
         names = list(rollout.robot_joint_names)

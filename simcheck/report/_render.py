@@ -23,7 +23,7 @@ from ._primitives import solids_from_truth, solids_from_urdf
 from ._scan_image import load_scan, png_of_scan
 from ._scene_image import png_of_scenes
 from ._tables import criteria_table, key_value_table, metrics_table, pipeline_table
-from ._tasks import task_figures
+from ._tasks import executed_urdf, task_figures
 
 __all__ = ["render_report", "read_json"]
 
@@ -111,7 +111,7 @@ def _tasks_section(lay: DemoLayout, cert: dict | None) -> str:
                 f"<p>{esc(task.get('reason', ''))}</p>")
         figs = "".join(img(png, alt, f"task.{key}.{fig}")
                        for fig, alt, png in task_figures(lay, task, key, _required_fraction(cert),
-                                                         _executed_urdf(lay, cert)))
+                                                         executed_urdf(lay, cert)))
         if not figs:
             figs = note(f"No recorded rollout for {key} (the task was not executed).", "info")
         parts.append(f'<div class="task" id="task-{esc(key)}">{head}{criteria_table(key, criteria)}{figs}</div>')
@@ -123,18 +123,6 @@ def _required_fraction(cert: Mapping) -> float | None:
     crit = cert.get("criteria")
     if isinstance(crit, Mapping) and isinstance(crit.get("opened_fraction"), (int, float)):
         return float(crit["opened_fraction"])
-    return None
-
-
-def _executed_urdf(lay: DemoLayout, cert: Mapping) -> Path | None:
-    """The scene the tasks were executed in: the certificate's reference (``--against``), else its scene;
-    relative paths are taken from the demo directory. ``None`` when neither is recorded or exists."""
-    for field in ("against", "scene"):
-        ref = cert.get(field)
-        if isinstance(ref, str) and ref:
-            for p in (Path(ref), lay.root / ref, lay.root / Path(ref).name):
-                if p.exists():
-                    return p
     return None
 
 

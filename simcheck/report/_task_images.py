@@ -26,8 +26,11 @@ def png_of_opening(t: np.ndarray, q: np.ndarray, t_plan: np.ndarray | None, q_pl
     scale, shown_unit = (np.degrees(1.0), "deg") if unit == "rad" else (1.0, unit)
     fig = new_figure(6.4, 3.2)
     ax = fig.add_subplot(1, 1, 1)
+    t_total = max(float(t[-1] - t[0]) if len(t) else 1.0, 1e-9)
     for i, (name, t0, t1) in enumerate(segments):
         ax.axvspan(t0, t1, color="#000000", alpha=0.04 if i % 2 else 0.09, lw=0)
+        if (t1 - t0) / t_total < 0.07:
+            continue  # too narrow to label legibly
         ax.text((t0 + t1) / 2, 1.0, name, transform=ax.get_xaxis_transform(), ha="center", va="bottom",
                 fontsize=7, color="#555555")
     if t_plan is not None and q_plan is not None and len(t_plan):

@@ -19,7 +19,7 @@ from ._key_frames import key_frame_images
 from ._layout import DemoLayout
 from ._task_images import png_of_key_frames, png_of_opening
 
-__all__ = ["task_figures", "rollout_path", "segment_spans"]
+__all__ = ["task_figures", "rollout_path", "segment_spans", "key_frames_for", "executed_urdf", "load_rollout"]
 
 log = logging.getLogger(__name__)
 
@@ -48,6 +48,14 @@ def segment_spans(rollout: Rollout) -> list[tuple[str, float, float]]:
     return spans
 
 
+def load_rollout(path: Path, key: str) -> Rollout:
+    """The rollout at ``path``; :class:`ArtifactError` naming the task and file when unreadable."""
+    try:
+        return Rollout.load(path)
+    except RolloutFormatError as exc:
+        raise ArtifactError(f"task {key}: {exc}") from exc
+
+
 def task_figures(lay: DemoLayout, task: Mapping, key: str, required_fraction: float | None = None,
                  executed_urdf: Path | None = None) -> list[tuple[str, str, bytes]]:
     """``(figure key, caption, PNG)`` for the task: opening over time vs the plan, and key frames.
@@ -59,10 +67,7 @@ def task_figures(lay: DemoLayout, task: Mapping, key: str, required_fraction: fl
         return []
     if not path.exists():
         raise ArtifactError(f"{lay.certificate_json}: task {key} names rollout {path}, which does not exist")
-    try:
-        rollout = Rollout.load(path)
-    except RolloutFormatError as exc:
-        raise ArtifactError(f"task {key}: {exc}") from exc
+    rollout = load_rollout(path, key)
     kind = str(task.get("kind", ""))
     unit = str(task.get("unit") or ("rad" if "door" in kind else "m"))
     plan = rollout.planned_object_q
@@ -71,16 +76,39 @@ def task_figures(lay: DemoLayout, task: Mapping, key: str, required_fraction: fl
              png_of_opening(rollout.t, rollout.object_q, rollout.t[has_plan], plan[has_plan],
                             rollout.requested_amount, required_fraction, unit,
                             f"{key}: joint opening over time", segment_spans(rollout)))]
-    frames = _saved_frames(lay, task, key)
-    caption = f"{key}: key frames taken by simcheck while executing with physics"
-    if not frames and executed_urdf is not None and _is_default_robot(rollout):
-        frames = key_frame_images(rollout, executed_urdf)
-        caption = f"{key}: key frames of the recorded execution (robot and object where physics moved them)"
+    caption, frames = key_frames_for(lay, task, key, rollout, executed_urdf)
     if frames:
         figs.append(("frames", caption, png_of_key_frames(frames)))
     else:
         log.warning("task %s: the certificate lists no key-frame images and the rollout cannot be redrawn", key)
     return figs
+
+
+def key_frames_for(lay: DemoLayout, task: Mapping, key: str, rollout: Rollout,
+                   executed_urdf: Path | None) -> tuple[str, list[tuple[str, np.ndarray]]]:
+    """``(caption, [(label, (h, w, 3) uint8)])`` key frames of the task.
+
+    The recorded states are redrawn with a camera whose view no wall blocks when the rollout's robot is
+    the default robot (the one we can load) and the executed scene is known; else the key frames simcheck
+    saved while executing are shown.
+    """
+    if executed_urdf is not None and _is_default_robot(rollout):
+        return (f"{key}: key frames of the recorded execution (robot and object where physics moved them)",
+                key_frame_images(rollout, executed_urdf))
+    return f"{key}: key frames taken by simcheck while executing with physics", _saved_frames(lay, task, key)
+
+
+def executed_urdf(lay: DemoLayout, cert: Mapping) -> Path | None:
+    """The scene the tasks were executed in: the certificate's reference (``against``), else its scene,
+    found as written, relative to the demo dir, or by name in the demo dir or its truth/ folder."""
+    for field in ("against", "scene"):
+        ref = cert.get(field)
+        if isinstance(ref, str) and ref:
+            name = Path(ref).name
+            for p in (Path(ref), lay.root / ref, lay.root / name, lay.truth_dir / name):
+                if p.exists():
+                    return p
+    return None
 
 
 def _saved_frames(lay: DemoLayout, task: Mapping, key: str) -> list[tuple[str, np.ndarray]]:

@@ -7,14 +7,15 @@ import json
 from pathlib import Path
 
 import numpy as np
-from PIL import Image
+from matplotlib import colormaps
 
 from ._errors import ArtifactError
 from ._figure import new_figure, png_from_figure
 from ._layout import DemoLayout
 from ._primitives import solids_from_urdf
-from ._scan_image import load_scan
-from ._scene_image import draw_solids, scene_bounds
+from ._scan_image import load_scan, view_bounds
+from ._scene_image import draw_solids, set_view
+from ._tasks import executed_urdf, key_frames_for, load_rollout, rollout_path
 
 __all__ = ["png_of_teaser"]
 
@@ -23,18 +24,21 @@ _TEASER_POINTS = 25_000
 
 
 def _key_frame(lay: DemoLayout) -> tuple[str, np.ndarray] | None:
-    """The 'opened' (else last) key frame of the first certified task (else of any task)."""
+    """The 'opened' (else last) key frame of the first certified task (else of any executed task)."""
     if not lay.certificate_json.exists():
         return None
     cert = json.loads(lay.certificate_json.read_text())
+    urdf = executed_urdf(lay, cert)
     tasks = sorted(cert.get("tasks", []), key=lambda t: t.get("status") != "certified")
     for task in tasks:
-        images = [lay.root / p for p in task.get("images", [])]
-        images = [p for p in images if p.exists()]
-        if images:
-            pick = next((p for p in images if "opened" in p.stem), images[-1])
-            with Image.open(pick) as im:
-                return f"{task.get('kind')}: {task.get('status')}", np.asarray(im.convert("RGB"))
+        key = str(task.get("joint"))
+        path = rollout_path(lay, task, key)
+        if path is None or not path.exists():
+            continue
+        _, frames = key_frames_for(lay, task, key, load_rollout(path, key), urdf)
+        if frames:
+            label, image = next((f for f in frames if f[0].startswith("opened")), frames[-1])
+            return f"{task.get('kind')}: {task.get('status')}", image
     return None
 
 
@@ -47,17 +51,20 @@ def png_of_teaser(demo_dir: str | Path, seed: int = 0) -> bytes:
     solids = solids_from_urdf(lay.scene_urdf)
     frame = _key_frame(lay)
     n = 3 if frame else 2
-    fig = new_figure(4.0 * n, 3.6)
-    bounds = scene_bounds(solids)
+    fig = new_figure(4.0 * n, 3.2)
+    fig.subplots_adjust(left=0, right=1, bottom=0, top=0.92, wspace=0.02)
+    bounds = view_bounds(scan.points, scan.part_id)
     rng = np.random.default_rng(seed)
     keep = rng.choice(len(scan.points), min(_TEASER_POINTS, len(scan.points)), replace=False)
     pts, pid = scan.points[keep], scan.part_id[keep]
-    from matplotlib import colormaps
+    inside = np.all((pts >= bounds[0]) & (pts <= bounds[1]), axis=1) & (pid >= 0)
+    pts, pid = pts[inside], pid[inside]
     cmap = colormaps["tab20"]
-    colours = np.array([cmap(int(p) % 20)[:3] if p >= 0 else (0.85, 0.85, 0.85) for p in pid])
+    order = {p: k for k, p in enumerate(np.unique(pid))}
+    colours = np.array([cmap(order[p] % 20)[:3] for p in pid]).reshape(-1, 3)
     ax = fig.add_subplot(1, n, 1, projection="3d")
-    ax.scatter(pts[:, 0], pts[:, 1], pts[:, 2], c=colours, s=0.8, marker=".", linewidths=0, depthshade=False)
-    draw_solids(ax, [], bounds)  # same view box as the reconstruction
+    ax.scatter(pts[:, 0], pts[:, 1], pts[:, 2], c=colours, s=1.0, marker=".", linewidths=0, depthshade=False)
+    set_view(ax, bounds)
     ax.set_title("1. labelled scan", fontsize=11)
     ax = fig.add_subplot(1, n, 2, projection="3d")
     draw_solids(ax, solids, bounds)
@@ -66,5 +73,5 @@ def png_of_teaser(demo_dir: str | Path, seed: int = 0) -> bytes:
         ax = fig.add_subplot(1, n, 3)
         ax.imshow(frame[1])
         ax.set_axis_off()
-        ax.set_title(f"3. certified in physics ({frame[0]})", fontsize=11)
+        ax.set_title(f"3. the robot opening it in physics ({frame[0]})", fontsize=11)
     return png_from_figure(fig, dpi=80)
