@@ -15,7 +15,8 @@ class PlannerConfig:
     Grasp
         grasp_tilt: downward tilt of the approach for horizontal handle bars (STACK: ~20 deg helps).
         pregrasp_distance: tool stand-off before the straight grasp motion, along the approach axis.
-        retreat_distance: straight retreat along the approach axis after releasing.
+        retreat_distance: straight retreat along the approach axis after releasing; when blocked, half
+            of it, down to min_retreat_distance, is tried.
         min_handle_lever: a grasp point that moves less than this per unit joint value (m/m or m/rad)
             cannot be pulled (it sits on the hinge axis).
     Default amounts
@@ -23,9 +24,11 @@ class PlannerConfig:
         door_fraction, door_max: a door opens min(door_fraction * range, door_max) by default.
     Stand pose sampling
         stand_distance: (min, max) horizontal distance from the handle to the base centre along the
-            outward normal; stand_lateral: half-width of the lateral offset; stand_yaw_noise: half-width of
+            outward normal; stand_lateral: half-width of the lateral offset (drawers); door_lateral: (min,
+            max) lateral offset for doors, positive away from the hinge; stand_yaw_noise: half-width of
             the yaw noise about facing the handle; stand_candidates: poses sampled; stand_keep: stop after
-            this many poses that reach the whole opening path; stand_path_samples: path points checked
+            this many poses that reach the whole opening path; stand_tries: ranked poses planned from
+            before giving up; stand_path_samples: path points checked
             with the base fixed.
         start_backoff: when no start configuration is given, the robot starts this far behind the stand
             pose with the arm at home (falls back to the stand pose itself if that is in collision).
@@ -34,6 +37,8 @@ class PlannerConfig:
         base_weight: relative motion weight of base joints during whole-body tracking (< 1 favours the arm).
     Motion
         approach_time: OMPL time limit for the approach; approach_planner: OMPL geometric planner name;
+        approach_check_step: OMPL's edge-checking step (Euclidean norm in joint space, m and rad mixed);
+        approach_attempts: plans tried (seed + i, step halved) until one passes the dense re-check;
         max_joint_step: densest joint-space spacing of returned and collision-checked samples (rad or m);
         open_step_prismatic / open_step_revolute: task-joint spacing of opening waypoints;
         track_pos_tol, track_rot_tol: tool pose error allowed at any opening sample;
@@ -43,15 +48,18 @@ class PlannerConfig:
     grasp_tilt: float = math.radians(20.0)
     pregrasp_distance: float = 0.10
     retreat_distance: float = 0.12
+    min_retreat_distance: float = 0.04
     min_handle_lever: float = 0.05
     drawer_fraction: float = 0.9
     door_fraction: float = 0.9
     door_max: float = math.radians(90.0)
     stand_distance: tuple = (0.55, 0.95)
     stand_lateral: float = 0.35
+    door_lateral: tuple = (-0.15, 0.6)
     stand_yaw_noise: float = math.radians(25.0)
     stand_candidates: int = 40
     stand_keep: int = 3
+    stand_tries: int = 6
     stand_path_samples: int = 6
     start_backoff: float = 0.35
     ik_pos_tol: float = 1e-3
@@ -60,6 +68,8 @@ class PlannerConfig:
     base_weight: float = 0.3
     approach_time: float = 3.0
     approach_planner: str = "RRTConnect"
+    approach_check_step: float = 0.03
+    approach_attempts: int = 3
     max_joint_step: float = 0.02
     open_step_prismatic: float = 0.01
     open_step_revolute: float = math.radians(1.5)

@@ -107,6 +107,15 @@ def _bar(geom: Geometry) -> tuple[np.ndarray | None, np.ndarray, float]:
     return axis, (lo + hi) / 2, float(np.sort(size)[1])
 
 
+def _outermost(scene, joint, cands, T_world_moving, values):
+    """The candidate geometry furthest out along the part's opening direction (a knob's cap rather than its
+    stem, a bar rather than its posts); ties go to the larger geometry."""
+    centres = [(T_world_moving @ c[2] @ np.append(_bar(c[1])[1], 1.0))[:3] for c in cands]
+    v = outward_direction(scene, joint, np.mean(centres, axis=0), values)
+    n = v / max(float(np.linalg.norm(v)), 1e-12)
+    return max(zip(cands, centres), key=lambda cc: (round(float(cc[1] @ n), 3), _extent(cc[0][1])))[0]
+
+
 def _extent(geom: Geometry) -> float:
     return float(max(geom.size)) if geom.kind != "mesh" else 1.0
 
@@ -156,7 +165,7 @@ def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: Plan
             cands = near
         axis, width, grasp_link = None, 0.0, moving
         if cands:
-            best = max(cands, key=lambda c: _extent(c[1]))
+            best = _outermost(scene, task.joint, cands, T_world_moving, values)
             grasp_link = best[0]
             a, _, width = _bar(best[1])
             axis = None if a is None else best[2][:3, :3] @ a
@@ -167,7 +176,7 @@ def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: Plan
                 f"{where}: no handle found on moving link {moving!r} (no fixed child link named '*handle*', "
                 f"no single fixed child, no collision geometry named '*handle*'); give OpenTask.grasp_point "
                 f"or grasp_link")
-        best = max(cands, key=lambda c: _extent(c[1]))
+        best = _outermost(scene, task.joint, cands, T_world_moving, values)
         grasp_link = best[0]
         a, centre, width = _bar(best[1])
         p_link = (best[2] @ np.append(centre, 1.0))[:3]

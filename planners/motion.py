@@ -59,36 +59,81 @@ class TrackResult:
 
 
 def track_poses(kin, world, T_targets: np.ndarray, s_values: np.ndarray, q_start: np.ndarray,
-                active: np.ndarray, weights: np.ndarray, cfg: PlannerConfig,
+                active: np.ndarray, weights: np.ndarray | None, cfg: PlannerConfig,
                 allow_grasp_contact: bool) -> TrackResult:
     """Follow the tool poses ``T_targets (n, 4, 4)`` (task joint at ``s_values (n,)``) from ``q_start (dof,)``.
 
-    ``q_start`` must already be at ``T_targets[0]``. Each target is solved by IK seeded with the previous
-    solution (moving only ``active`` columns, weighted by ``weights``); a target that is not reached within
-    ``cfg.track_pos_tol``/``cfg.track_rot_tol``, a jump larger than 0.5 rad/m in one step, or a collision
-    anywhere on the interpolated path stops the tracking.
+    ``q_start`` must already be at ``T_targets[0]``. Target ``k`` is solved by IK seeded with the solution
+    for ``k - 1``; the joint-space segment between them is interpolated at ``cfg.max_joint_step`` and every
+    sample must be within the limits, collision-free, and keep the tool within ``cfg.track_pos_tol`` of the
+    straight line between the two targets. When the preferred redundancy resolution (``active`` columns,
+    ``weights``) fails a step, alternatives are tried in a fixed order: arm only, whole body weighted,
+    whole body with equal weights, then seeded restarts near the previous solution. The first step no variant can take stops
+    the tracking, and the reason names what collided.
     """
-    qs = [np.asarray(q_start, float)]
+    s_values = np.asarray(s_values, float)
+    dof = len(q_start)
+    arm = np.zeros(dof, bool)
+    arm[3:] = True
+    whole = np.ones(dof, bool)
+    variants, seen = [], set()
+    for act, w in ((np.asarray(active, bool), weights), (arm, None), (whole, weights), (whole, None)):
+        key = (act.tobytes(), None if w is None else np.asarray(w).tobytes())
+        if key not in seen:
+            seen.add(key)
+            variants.append((act, w, 0))
+    variants += [(np.asarray(active, bool), weights, r) for r in (1, 2, 3)]
+    out_q, out_s = [np.asarray(q_start, float)], [float(s_values[0])]
+    q = out_q[0]
     for k in range(1, len(T_targets)):
-        r = solve_ik(kin.tool_pose_jacobian, T_targets[k], qs[-1], world.robot.lower, world.robot.upper,
-                     active, weights, pos_tol=cfg.track_pos_tol * 0.3, rot_tol=cfg.track_rot_tol * 0.3,
-                     max_iter=60, max_step=0.2)
-        if r.pos_error > cfg.track_pos_tol or r.rot_error > cfg.track_rot_tol:
-            return _partial(qs, s_values, world, cfg, allow_grasp_contact,
-                            f"IK lost the tool path at sample {k}/{len(T_targets) - 1} "
-                            f"(error {r.pos_error * 1000:.1f} mm, {np.degrees(r.rot_error):.1f} deg)", k)
-        if np.max(np.abs(r.q - qs[-1])) > 0.5:
-            return _partial(qs, s_values, world, cfg, allow_grasp_contact,
-                            f"IK jumped {np.max(np.abs(r.q - qs[-1])):.2f} rad at sample {k}", k)
-        qs.append(r.q)
-    q_dense, s_dense = densify(np.array(qs), np.asarray(s_values)[:len(qs)], cfg.max_joint_step)
-    bad = first_invalid(world, q_dense, s_dense, allow_grasp_contact)
-    if bad >= 0:
-        return TrackResult(False, q_dense[:bad], s_dense[:bad],
-                           f"collision at task joint value {s_dense[bad]:.3f}", bad)
-    return TrackResult(True, q_dense, s_dense, "ok", -1)
+        first_reason = None
+        for act, w, restart in variants:
+            seed_q = q
+            if restart:
+                rng = np.random.default_rng(1000 * k + restart)
+                seed_q = np.clip(q + np.where(act, rng.uniform(-0.15, 0.15, dof), 0.0), world.robot.lower,
+                                 world.robot.upper)
+            r = solve_ik(kin.tool_pose_jacobian, T_targets[k], seed_q, world.robot.lower, world.robot.upper,
+                         act, w, pos_tol=cfg.track_pos_tol * 0.3, rot_tol=cfg.track_rot_tol * 0.3,
+                         max_iter=60, max_step=0.2)
+            why = _step_problem(kin, world, q, r, T_targets[k - 1], T_targets[k], s_values[k - 1], s_values[k],
+                                cfg, allow_grasp_contact)
+            if why is None:
+                break
+            first_reason = first_reason or why
+        else:
+            q_d, s_d = np.array(out_q), np.array(out_s)
+            return TrackResult(False, q_d, s_d, f"step {k}/{len(T_targets) - 1}: {first_reason}", k)
+        seg_q, seg_s = densify(np.array([q, r.q]), s_values[k - 1:k + 1], cfg.max_joint_step)
+        out_q.extend(seg_q[1:])
+        out_s.extend(seg_s[1:])
+        q = r.q
+    return TrackResult(True, np.array(out_q), np.array(out_s), "ok", -1)
 
 
-def _partial(qs, s_values, world, cfg, allow, reason, k) -> TrackResult:
-    q_dense, s_dense = densify(np.array(qs), np.asarray(s_values)[:len(qs)], cfg.max_joint_step)
-    return TrackResult(False, q_dense, s_dense, reason, k)
+def _step_problem(kin, world, q_prev, r, T_prev, T_next, s_prev, s_next, cfg, allow) -> str | None:
+    """Why the IK step ``q_prev -> r.q`` cannot be taken (None when it can)."""
+    if r.pos_error > cfg.track_pos_tol or r.rot_error > cfg.track_rot_tol:
+        return (f"IK lost the tool path (error {r.pos_error * 1000:.1f} mm, "
+                f"{np.degrees(r.rot_error):.1f} deg)")
+    jump = float(np.max(np.abs(r.q - q_prev)))
+    if jump > 0.5:
+        return f"IK jumped {jump:.2f} rad"
+    seg_q, seg_s = densify(np.array([q_prev, r.q]), np.array([s_prev, s_next]), cfg.max_joint_step)
+    for i in range(1, len(seg_q)):
+        u = i / (len(seg_q) - 1)
+        p_line = (1 - u) * T_prev[:3, 3] + u * T_next[:3, 3]
+        dev = float(np.linalg.norm(kin.tool_pose(seg_q[i])[:3, 3] - p_line))
+        if dev > cfg.track_pos_tol:
+            return f"tool leaves the path by {dev * 1000:.1f} mm between samples"
+        if not world.within_limits(seg_q[i]) or world.in_collision(seg_q[i], seg_s[i], allow):
+            return _what_collides(world, seg_q[i], seg_s[i], allow) + f" at task joint value {seg_s[i]:.3f}"
+    return None
+
+
+def _what_collides(world, q, s, allow) -> str:
+    """Short description of why ``(q, s)`` is invalid, e.g. "collision panda_hand / scene::cabinet1_door2_0"."""
+    if not world.within_limits(q):
+        return "joint limit"
+    pairs = world.colliding_pairs(q, s, allow)
+    return "collision " + ", ".join(f"{a} / {b}" for a, b in pairs[:3]) if pairs else "collision"

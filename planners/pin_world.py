@@ -241,7 +241,7 @@ class PlanningWorld:
         return out
 
     def within_limits(self, q: np.ndarray) -> bool:
-        return bool(np.all(q >= self.robot.lower) and np.all(q <= self.robot.upper))
+        return bool(np.all(q >= self.robot.lower - 1e-9) and np.all(q <= self.robot.upper + 1e-9))
 
     def moving_link_pose(self, s: float) -> np.ndarray:
         """``(4, 4)`` world pose of the task joint's child link at joint value ``s``."""

@@ -126,7 +126,12 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     T_paths = [T_moving @ T for T in handle.T_link_grasps]
 
     t = time.perf_counter()
-    stands, summary = find_stand_poses(kin, world, T_paths, s_path, cfg, rng)
+    hinge_xy = None
+    if j.type != "prismatic":
+        T_world_joint = scene.T_world_link(j.parent, state) @ j.T_parent_joint
+        if abs((T_world_joint[:3, :3] @ j.axis)[2]) > 0.9:   # a vertical hinge: a side-swinging door
+            hinge_xy = T_world_joint[:2, 3]
+    stands, summary = find_stand_poses(kin, world, T_paths, s_path, cfg, rng, hinge_xy)
     timings["stand"] = time.perf_counter() - t
     if not stands:
         return result(PlanStatus.NO_STAND_POSE, f"{task.kind} {task.joint!r}: no stand pose from which the "
@@ -137,7 +142,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     weights = np.ones(robot.dof)
     weights[:3] = cfg.base_weight
     failures = []
-    for stand in stands[:cfg.stand_keep]:
+    for stand in stands[:cfg.stand_tries]:
         out = _plan_from_stand(kin, world, task, stand, T_paths[stand.grasp_index], s_path, handle, cfg, rng,
                                arm, whole, weights, start, timings, seed)
         if isinstance(out, tuple):
@@ -182,16 +187,24 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
         return PlanStatus.IK_FAILED, f"straight grasp motion failed: {g.reason}"
     # Open: follow the estimated handle path with the whole body.
     t = time.perf_counter()
-    o = track_poses(kin, world, T_path, s_path, g.q[-1], whole, weights, cfg, True)
+    # A stand pose from which the base-fixed arm reached the whole path is tracked arm-first; otherwise the
+    # whole body moves (base down-weighted). track_poses falls back to the other resolutions per step.
+    o = track_poses(kin, world, T_path, s_path, g.q[-1], arm if stand.path_share == 1.0 else whole, weights, cfg,
+                    True)
     timings["open"] = time.perf_counter() - t
     if not o.success:
         return PlanStatus.OPENING_FAILED, f"opening motion failed at {o.s[-1] if len(o.s) else s0:.3f}: {o.reason}"
     # Retreat: back off along the approach axis with the gripper open, at the final joint value.
     t = time.perf_counter()
     T_end = kin.tool_pose(o.q[-1])
-    n = max(2, int(math.ceil(cfg.retreat_distance / 0.01)) + 1)
-    T_back = np.array([_translate_tool(T_end, -cfg.retreat_distance * u) for u in np.linspace(0, 1, n)])
-    rt = track_poses(kin, world, T_back, np.full(n, s1), o.q[-1], whole, weights, cfg, False)
+    dist = cfg.retreat_distance
+    while True:
+        n = max(2, int(math.ceil(dist / 0.01)) + 1)
+        T_back = np.array([_translate_tool(T_end, -dist * u) for u in np.linspace(0, 1, n)])
+        rt = track_poses(kin, world, T_back, np.full(n, s1), o.q[-1], whole, weights, cfg, False)
+        if rt.success or dist / 2 < cfg.min_retreat_distance - 1e-9:
+            break
+        dist /= 2
     timings["retreat"] = time.perf_counter() - t
     if not rt.success:
         return PlanStatus.IK_FAILED, f"retreat after release failed: {rt.reason}"
@@ -210,15 +223,28 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
     def valid(q) -> bool:
         return not world.in_collision(q, s0, False)
 
-    mr = plan_joint_path(q_start, q_pre, lo, hi, valid, time_limit=cfg.approach_time, seed=seed,
-                         planner=cfg.approach_planner, resolution=0.004)
+    extent = float(np.linalg.norm(hi - lo))
+    step = cfg.approach_check_step
+    for attempt in range(cfg.approach_attempts):
+        # OMPL checks edges at `step` (Euclidean in joint space); the returned path is re-checked at
+        # cfg.max_joint_step per joint. A path that fails the dense re-check is planned again, finer.
+        mr = plan_joint_path(q_start, q_pre, lo, hi, valid, time_limit=cfg.approach_time, seed=seed + attempt,
+                             planner=cfg.approach_planner, resolution=step / extent)
+        if not mr.success:
+            timings["approach"] = time.perf_counter() - t
+            return PlanStatus.NO_PATH, f"approach: {mr.reason}"
+        path = mr.path.copy()
+        path[0], path[-1] = q_start, q_pre   # exactly the requested ends (OMPL copies may differ in the last bit)
+        qa, sa = densify(path, np.full(len(path), s0), cfg.max_joint_step)
+        bad = first_invalid(world, qa, sa, False)
+        if bad < 0:
+            break
+        log.debug("approach path collides at dense sample %d; planning again with half the step", bad)
+        step /= 2
     timings["approach"] = time.perf_counter() - t
-    if not mr.success:
-        return PlanStatus.NO_PATH, f"approach: {mr.reason}"
-    qa, sa = densify(mr.path, np.full(len(mr.path), s0), cfg.max_joint_step)
-    bad = first_invalid(world, qa, sa, False)
     if bad >= 0:
-        return PlanStatus.NO_PATH, f"approach path collides at sample {bad} when re-checked densely"
+        return PlanStatus.NO_PATH, (f"approach: {cfg.approach_attempts} OMPL paths all collided when re-checked "
+                                    f"densely ({_what(world, qa[bad], s0)})")
     T_open = np.array([world.moving_link_pose(s) for s in o.s]) @ handle.T_link_grasps[stand.grasp_index]
     q_rel = np.repeat(o.q[-1:], 2, axis=0)
     return [
@@ -228,6 +254,13 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
         Segment("release", q_rel, np.full(2, s1), _fk_poses(kin, q_rel), "open"),
         Segment("retreat", rt.q, rt.s, _fk_poses(kin, rt.q), "open"),
     ]
+
+
+def _what(world, q, s) -> str:
+    if not world.within_limits(q):
+        return "joint limit"
+    pairs = world.colliding_pairs(q, s, False)
+    return "collision " + ", ".join(f"{a} / {b}" for a, b in pairs[:3]) if pairs else "collision"
 
 
 def _start_configuration(world, spec, stand: StandPose, start, cfg, s0):

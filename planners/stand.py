@@ -61,9 +61,12 @@ def _margin(q: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> float:
 
 
 def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: PlannerConfig,
-                     rng: np.random.Generator) -> tuple[list[StandPose], str]:
+                     rng: np.random.Generator, hinge_xy: np.ndarray | None = None) -> tuple[list[StandPose], str]:
     """Sample and rank stand poses for grasp paths ``T_paths`` (one ``(m, 4, 4)`` array per grasp candidate)
     at task joint values ``s_samples (m,)``.
+
+    ``hinge_xy (2,)``: for a door, a point of its (vertical) hinge line; the lateral offsets are then
+    biased away from the hinge (``cfg.door_lateral``), so the base stands clear of the swinging panel.
 
     Returns ``(poses best first, summary)``; ``summary`` says how many were tried and why they failed.
     """
@@ -76,6 +79,11 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
         n = np.array([1.0, 0.0])
     n = n / np.linalg.norm(n)
     perp = np.array([-n[1], n[0]])
+    lat_range = (-cfg.stand_lateral, cfg.stand_lateral)
+    if hinge_xy is not None:
+        if perp @ (p0[:2] - hinge_xy) < 0:
+            perp = -perp   # +perp points from the hinge toward the handle (the free edge)
+        lat_range = cfg.door_lateral
     arm = np.zeros(spec.dof, bool)
     arm[3:] = True
     m = len(s_samples)
@@ -84,7 +92,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
     n_ik = n_complete = 0
     for trial in range(cfg.stand_candidates):
         d = rng.uniform(*cfg.stand_distance)
-        lat = rng.uniform(-cfg.stand_lateral, cfg.stand_lateral)
+        lat = rng.uniform(*lat_range)
         xy = p0[:2] + n * d + perp * lat
         to_handle = p0[:2] - xy
         yaw = math.atan2(to_handle[1], to_handle[0]) + rng.uniform(-cfg.stand_yaw_noise, cfg.stand_yaw_noise)
