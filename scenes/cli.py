@@ -15,12 +15,16 @@ __all__ = ["main"]
 
 
 def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="scenes", description="Ground-truth articulated rooms and virtual RGB-D scans.")
-    ap.add_argument("-v", "--verbose", action="store_true", help="log progress")
-    ap.add_argument("-q", "--quiet", action="store_true", help="only errors")
+    common = argparse.ArgumentParser(add_help=False)
+    # SUPPRESS: a flag given before or after the subcommand is kept (the subparser adds no default)
+    common.add_argument("-v", "--verbose", action="store_true", default=argparse.SUPPRESS, help="log progress")
+    common.add_argument("-q", "--quiet", action="store_true", default=argparse.SUPPRESS,
+                        help="print nothing but errors")
+    ap = argparse.ArgumentParser(prog="scenes", description="Ground-truth articulated rooms and virtual RGB-D scans.",
+                                 parents=[common])
     sub = ap.add_subparsers(dest="cmd", required=True)
-    sub.add_parser("list", help="list the built-in scenes")
-    mk = sub.add_parser("make", help="make and scan a scene")
+    sub.add_parser("list", help="list the built-in scenes", parents=[common])
+    mk = sub.add_parser("make", help="make and scan a scene", parents=[common])
     mk.add_argument("name", help="scene name (see `scenes list`)")
     mk.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     mk.add_argument("--preset", default="clean", help="scan preset: clean | realistic (default clean)")
@@ -32,7 +36,8 @@ def _parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    level = logging.WARNING if args.quiet else logging.INFO if args.verbose else logging.WARNING
+    args.quiet = getattr(args, "quiet", False)
+    level = logging.INFO if getattr(args, "verbose", False) and not args.quiet else logging.WARNING
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
     from .api import make_scene
     from .builtin import SCENE_DESCRIPTIONS

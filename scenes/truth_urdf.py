@@ -15,7 +15,7 @@ import numpy as np
 
 from .atomic_write import write_text_atomic
 from .inertia import part_mass_properties
-from .model import ArticulatedObject, JointType, Scene, ShapeType
+from .model import ArticulatedObject, Scene, ShapeType
 from .naming import WORLD_LINK
 from .poses import xyz_rpy_from_T
 
