@@ -22,6 +22,12 @@ class ReconConfig:
     max_scene_extent: float = 60.0
     """A scan whose bounding box is larger than this (m) is refused: it is almost surely millimetres."""
 
+    outlier_neighbors: int = 16
+    """Statistical outlier removal (flying pixels): neighbours considered per point."""
+    outlier_std_ratio: float = 3.0
+    """... a point is an outlier when its mean neighbour distance exceeds the cloud's mean by this
+    many standard deviations."""
+
     # --- primitive fitting, Eq. 3 (fitting.py) ---
     min_thickness: float = 0.01
     """Smallest box/cylinder extent (m): flat or collinear parts are thickened to this."""
@@ -37,6 +43,13 @@ class ReconConfig:
     """ICP iteration cap per candidate."""
     icp_candidate_ratio: float = 2.0
     """Only candidates whose unaligned score is within this factor of the best one are ICP-aligned."""
+    face_band: float = 0.03
+    """Box faces are re-placed at the median of the points within this distance (m) of them, so
+    depth noise and stray points do not inflate a box the way min/max extents do."""
+    noise_floor: float = 0.003
+    """Depth noise (m, robust σ across a box's best-seen face) below which extents are not corrected."""
+    min_face_points: int = 12
+    """A face with fewer points in its band keeps its bounding-box position."""
     coverage_distance: float = 0.02
     """A primitive surface sample is 'seen' when a scan point lies within this distance (m)."""
     min_face_coverage: float = 0.25
@@ -45,10 +58,15 @@ class ReconConfig:
     point_term_weight: float = 1.0
     """Weight of the scan-to-primitive mean distance added to the Eq. 3 score, so that leaving
     unobserved faces out can never reward a primitive that does not explain the points."""
+    small_part_points: int = 400
+    """Parts with fewer points also get candidates aligned with their object's base part (their own
+    bounding box is too noisy to orient them)."""
+    box_preference: float = 0.1
+    """A cylinder or sphere wins only if its score is lower than the best box's by this fraction."""
     candidates: tuple[str, ...] = ("box", "cylinder_x", "cylinder_y", "cylinder_z", "sphere")
     """Candidate templates M^c: box, a cylinder along each box axis, sphere."""
 
-    completion_reach: float = 0.1
+    completion_reach: float = 0.2
     """Legs are extended (completion.py) to a surface above / below them at most this far (m)."""
 
     # --- surface planes and contacts, Eq. 1 (planes.py, contacts.py) ---
@@ -72,6 +90,9 @@ class ReconConfig:
     drawer_travel_fraction: float = 0.8
     """Drawer upper limit = this × the drawer box's depth, estimated as the body's depth along the
     drawer axis minus ``drawer_back_clearance`` (a closed drawer's box is hidden from the camera)."""
+    panel_ratio: float = 0.3
+    """A drawer/door whose thinnest extent is below this fraction of the next one is a front panel:
+    its thin axis tells the opening's normal."""
     drawer_back_clearance: float = 0.025
     """Back panel plus the gap behind a drawer box (m)."""
     door_max_angle: float = 1.75
@@ -97,6 +118,9 @@ class ReconConfig:
     """Plane normals with |cos| above this are paired for the Kabsch rotation (cos 26°)."""
     refine_max_angle: float = 0.35
     """A refinement rotation larger than this (rad) is rejected as a bad pairing."""
+    snap_ambiguity: float = 0.05
+    """A child is translated onto its parent's contact plane only if no plane pair along another
+    direction has a contact score within this of the best pair's (else the snap is ambiguous)."""
     collision_clearance: float = 0.003
     """Movable parts and their children get collision boxes shrunk by this (m, each side), so they
     do not start in contact with their body or siblings in simulation."""

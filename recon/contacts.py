@@ -21,7 +21,7 @@ from recon.config import ReconConfig
 from recon.model import ContactEdge
 from recon.primitive import SurfacePlane
 
-__all__ = ["plane_basis", "contact_edge", "contact_edges"]
+__all__ = ["plane_basis", "contact_pairs", "contact_edge", "contact_edges"]
 
 
 def plane_basis(normal: np.ndarray) -> np.ndarray:
@@ -32,21 +32,18 @@ def plane_basis(normal: np.ndarray) -> np.ndarray:
     return np.stack([u, np.cross(normal, u)])
 
 
-def contact_edge(parent_id: int, parent_planes: tuple[SurfacePlane, ...], child_id: int,
-                 child_planes: tuple[SurfacePlane, ...], config: ReconConfig) -> ContactEdge | None:
-    """The directed contact parent -> child of Eq. 1, or None when no plane pair satisfies it.
-
-    (None here is "no edge", an ordinary outcome inside a graph construction, not a failure.)
-    """
+def contact_pairs(parent_planes: tuple[SurfacePlane, ...], child_planes: tuple[SurfacePlane, ...],
+                  config: ReconConfig) -> list[tuple[int, int, float, float, float]]:
+    """Every plane pair satisfying Eq. 1: [(parent plane i, child plane j, Cont, Align, Dist), ...]."""
     if not parent_planes or not child_planes:
-        return None
+        return []
     Np = np.stack([p.normal for p in parent_planes])                 # (P, 3)
     dp = np.array([p.d for p in parent_planes])                      # (P,)
     align = np.abs(Np @ np.stack([c.normal for c in child_planes]).T)  # (P, C)
     dist = np.stack([np.abs(c.polygon @ Np.T + dp).mean(axis=0) for c in child_planes], axis=1)
     ii, jj = np.nonzero((align >= config.theta_a) & (dist <= config.theta_d))
     if ii.size == 0:
-        return None
+        return []
     polys_p, polys_c = [], []
     for i, j in zip(ii, jj):
         pp = parent_planes[i]
@@ -54,20 +51,24 @@ def contact_edge(parent_id: int, parent_planes: tuple[SurfacePlane, ...], child_
         origin = pp.polygon[0]
         polys_p.append(shapely.Polygon((pp.polygon - origin) @ B.T))
         polys_c.append(shapely.Polygon((child_planes[j].polygon - origin) @ B.T))
-    polys_p, polys_c = np.array(polys_p, dtype=object), np.array(polys_c, dtype=object)
-    polys_p = shapely.make_valid(polys_p)
-    polys_c = shapely.make_valid(polys_c)
+    polys_p = shapely.make_valid(np.array(polys_p, dtype=object))
+    polys_c = shapely.make_valid(np.array(polys_c, dtype=object))
     area_c = shapely.area(polys_c)
     inter = shapely.area(shapely.intersection(polys_p, polys_c))
     cont = np.where(area_c > 1e-12, inter / np.maximum(area_c, 1e-12), 0.0)
-    ok = cont >= config.theta_c
-    if not ok.any():
+    return [(int(i), int(j), float(c), float(align[i, j]), float(dist[i, j]))
+            for i, j, c in zip(ii, jj, cont) if c >= config.theta_c]
+
+
+def contact_edge(parent_id: int, parent_planes: tuple[SurfacePlane, ...], child_id: int,
+                 child_planes: tuple[SurfacePlane, ...], config: ReconConfig) -> ContactEdge | None:
+    """The directed contact parent -> child of Eq. 1 (best pair: max Cont, then min Dist), or None
+    when no plane pair satisfies it (an ordinary outcome while building the graph, not a failure)."""
+    pairs = contact_pairs(parent_planes, child_planes, config)
+    if not pairs:
         return None
-    k = np.flatnonzero(ok)
-    d = dist[ii[k], jj[k]]
-    best = k[np.lexsort((d, -np.round(cont[k], 6)))[0]]
-    return ContactEdge(int(parent_id), int(child_id), float(cont[best]), float(align[ii[best], jj[best]]),
-                       float(dist[ii[best], jj[best]]), int(ii[best]), int(jj[best]))
+    i, j, cont, align, dist = min(pairs, key=lambda t: (-round(t[2], 6), t[4]))
+    return ContactEdge(int(parent_id), int(child_id), cont, align, dist, i, j)
 
 
 def _bounds(planes: tuple[SurfacePlane, ...]) -> np.ndarray:

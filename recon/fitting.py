@@ -23,7 +23,7 @@ from recon.bounding import oriented_box
 from recon.config import ReconConfig
 from recon.primitive import Primitive, PrimitiveKind
 
-__all__ = ["FitScore", "candidate_primitives", "score_primitive", "fit_part"]
+__all__ = ["FitScore", "candidate_primitives", "score_primitive", "refit_box_faces", "fit_part"]
 
 # rotations making a box axis the local z of a cylinder: columns = (new x, new y, new z) in box axes
 _AXIS_PERM = {
@@ -51,10 +51,32 @@ class FitScore:
     observed_faces: tuple[int, ...]
 
 
-def candidate_primitives(points: np.ndarray, config: ReconConfig) -> dict[str, Primitive]:
-    """Candidate primitives scaled from the minimum-volume oriented box of ``points`` (n, 3)."""
+def _box_in_frame(points: np.ndarray, R: np.ndarray, min_thickness: float) -> tuple[np.ndarray, np.ndarray]:
+    q = points @ R
+    lo, hi = q.min(axis=0), q.max(axis=0)
+    T = np.eye(4)
+    T[:3, :3], T[:3, 3] = R, R @ ((lo + hi) / 2)
+    return T, np.maximum(hi - lo, min_thickness)
+
+
+def candidate_primitives(points: np.ndarray, config: ReconConfig,
+                         R_world_ref: np.ndarray | None = None) -> dict[str, Primitive]:
+    """Candidate primitives scaled from the minimum-volume oriented box of ``points`` (n, 3).
+
+    With ``R_world_ref`` (3, 3) — the axes of the object's base part — the same templates are also
+    built from the box aligned with those axes (names suffixed ``@ref``): small parts (knobs, handles)
+    have too few points for a reliable box orientation of their own.
+    """
     T, ext = oriented_box(points, min_thickness=config.min_thickness,
                           upright_tolerance=config.upright_tolerance)
+    out = _templates(points, T, ext, config)
+    if R_world_ref is not None:
+        Tr, er = _box_in_frame(points, R_world_ref, config.min_thickness)
+        out.update({f"{k}@ref": v for k, v in _templates(points, Tr, er, config).items()})
+    return out
+
+
+def _templates(points, T, ext, config) -> dict[str, Primitive]:
     out = {}
     for name in config.candidates:
         if name == "box":
@@ -109,6 +131,69 @@ def score_primitive(prim: Primitive, points: np.ndarray, tree: cKDTree, config: 
                     tuple(int(f) for f in observed))
 
 
+def refit_box_faces(prim: Primitive, points: np.ndarray, config: ReconConfig) -> Primitive:
+    """A box with each face moved to the median offset of the points within ``face_band`` of it
+    (assigned to their nearest face); faces with fewer than ``min_face_points`` stay put."""
+    if prim.kind is not PrimitiveKind.BOX:
+        return prim
+    q = prim.to_part(points)
+    h = prim.size / 2.0
+    lo, hi = -h.copy(), h.copy()
+    d = np.abs(np.abs(q) - h)                       # (n, 3) distance to the face plane on each axis
+    nearest = np.argmin(d, axis=1)
+    for k in range(3):
+        for sign, bound in ((-1.0, lo), (1.0, hi)):
+            sel = (nearest == k) & (np.sign(q[:, k]) == sign) & (d[:, k] <= config.face_band)
+            if sel.sum() >= config.min_face_points:
+                bound[k] = float(np.median(q[sel, k]))
+    size = np.maximum(hi - lo, config.min_thickness)
+    mid = (hi + lo) / 2
+    T = prim.T_world_part.copy()
+    T[:3, 3] = prim.to_world(mid[None])[0]
+    return Primitive(PrimitiveKind.BOX, size, T)
+
+
+def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig) -> Primitive:
+    """The box with its extents corrected for depth noise.
+
+    The noise σ is the robust spread (1.4826 × MAD) of the points about the box face that holds the
+    most points (the face the camera saw best; depth noise runs across it). Min/max extents of a
+    noisy scan overshoot by about 3σ along that face's normal, so the faces on that axis are placed at
+    the 0.2 / 99.8 percentiles pulled in by 2.9σ (a Gaussian's 0.2 % quantile), never closer than
+    ``min_thickness`` around the median; the other axes take the 0.2 / 99.8 percentiles.
+    """
+    if prim.kind is not PrimitiveKind.BOX:
+        return prim
+    q = prim.to_part(points)
+    h = prim.size / 2.0
+    d = np.abs(np.abs(q) - h)
+    nearest = np.argmin(d, axis=1)
+    face = nearest * 2 + (q[np.arange(len(q)), nearest] > 0)
+    counts = np.bincount(face, minlength=6)
+    f = int(np.argmax(counts))
+    k = f // 2
+    r = q[face == f, k]
+    sigma = 1.4826 * float(np.median(np.abs(r - np.median(r))))
+    if sigma < config.noise_floor:
+        return prim                 # a clean scan: nothing to correct
+    lo = np.percentile(q, 0.2, axis=0)
+    hi = np.percentile(q, 99.8, axis=0)
+    lo[k] += 2.9 * sigma            # depth noise runs along the rays, i.e. across the seen face
+    hi[k] -= 2.9 * sigma
+    if hi[k] - lo[k] < config.min_thickness:
+        # a panel seen from one side: keep the seen face where its points are, thickness inward
+        seen = float(np.median(r))
+        sign = 1.0 if f % 2 == 1 else -1.0
+        lo[k], hi[k] = sorted((seen, seen - sign * config.min_thickness))
+    for a in range(3):
+        if hi[a] - lo[a] < config.min_thickness:
+            mid = (hi[a] + lo[a]) / 2
+            lo[a], hi[a] = mid - config.min_thickness / 2, mid + config.min_thickness / 2
+    T = prim.T_world_part.copy()
+    T[:3, 3] = prim.to_world(((lo + hi) / 2)[None])[0]
+    return Primitive(PrimitiveKind.BOX, hi - lo, T)
+
+
 def _icp_refined(prim: Primitive, score: FitScore, points: np.ndarray, normals: np.ndarray,
                  config: ReconConfig, rng: np.random.Generator) -> Primitive:
     from recon.open3d_engine import icp_point_to_plane
@@ -123,10 +208,12 @@ def _icp_refined(prim: Primitive, score: FitScore, points: np.ndarray, normals: 
 
 
 def fit_part(points: np.ndarray, config: ReconConfig = ReconConfig(), *, seed: int = 0,
-             normals: np.ndarray | None = None) -> tuple[str, Primitive, FitScore, dict[str, float]]:
+             normals: np.ndarray | None = None, R_world_ref: np.ndarray | None = None
+             ) -> tuple[str, Primitive, FitScore, dict[str, float]]:
     """Eq. 3 for one part: ``points`` (n, 3) world -> (winner name, primitive, its score, {name: total}).
 
     Deterministic for a given ``seed``. ``normals`` (n, 3) are estimated when not given.
+    ``R_world_ref`` (3, 3): extra candidates aligned with these axes (see candidate_primitives).
     """
     from recon.open3d_engine import estimate_normals
 
@@ -142,7 +229,7 @@ def fit_part(points: np.ndarray, config: ReconConfig = ReconConfig(), *, seed: i
     best = None
     table: dict[str, float] = {}
     initial = {name: (prim, score_primitive(prim, points, tree, config, np.random.default_rng(seed)))
-               for name, prim in candidate_primitives(points, config).items()}
+               for name, prim in candidate_primitives(points, config, R_world_ref).items()}
     cutoff = config.icp_candidate_ratio * min(s.total for _, s in initial.values())
     for name, (prim, s0) in initial.items():
         if s0.total > cutoff:          # hopeless before alignment: ICP will not rescue it
@@ -151,7 +238,13 @@ def fit_part(points: np.ndarray, config: ReconConfig = ReconConfig(), *, seed: i
         moved = _icp_refined(prim, s0, points, normals, config, np.random.default_rng(seed + 1))
         s1 = score_primitive(moved, points, tree, config, np.random.default_rng(seed))
         prim, s = (moved, s1) if s1.total < s0.total else (prim, s0)
+        if prim.kind is PrimitiveKind.BOX:
+            for variant in (denoised_box(prim, points, config),):
+                s2 = score_primitive(variant, points, tree, config, np.random.default_rng(seed))
+                prim, s = (variant, s2) if s2.total < s.total else (prim, s)
         table[name] = s.total
-        if best is None or s.total < best[2].total - 1e-12:
-            best = (name, prim, s)
+        # Occam prior: a non-box must beat the boxes by ``box_preference`` (furniture is mostly boxes)
+        rank = s.total * (1.0 if prim.kind is PrimitiveKind.BOX else 1.0 + config.box_preference)
+        if best is None or rank < best[3] - 1e-12:
+            best = (name, prim, s, rank)
     return best[0], best[1], best[2], table

@@ -37,17 +37,26 @@ _UP = np.array([0.0, 0.0, 1.0])
 
 def opening_face(parent: Primitive, child: Primitive, handles: list[Primitive],
                  config: ReconConfig) -> tuple[np.ndarray, float]:
-    """The parent's face a drawer/door sits in: (outward unit normal (3,), d) of that plane."""
+    """The parent's face a drawer/door sits in: (outward unit normal (3,), d) of that plane.
+
+    Among the parent's faces with a horizontal normal: those its handles stand outside of (when it has
+    handles); then, for a panel-like child (a closed drawer or a door is seen as its front panel), the
+    face most parallel to the panel; then the face the child reaches most closely.
+    """
     planes = parent.planes(config.cylinder_side_faces)
     side = [p for p in planes if abs(p.normal[2]) < 0.5] or list(planes)
     corners = child.corners()
+    ext = np.sort(child.size)
+    R = child.T_world_part[:3, :3]
+    thin = R[:, int(np.argmin(child.size))] if ext[0] < config.panel_ratio * ext[1] else None
     cand = []
     for pl in side:
         gap = float(np.max(corners @ pl.normal + pl.d))            # child's outermost reach past the plane
         outside = all(float(h.center @ pl.normal + pl.d) > -config.theta_d for h in handles)
-        cand.append((0 if outside else 1, abs(gap), pl))
-    cand.sort(key=lambda t: (t[0], t[1]))
-    best = cand[0][2]
+        skew = 0.0 if thin is None else round(1.0 - abs(float(pl.normal @ thin)), 2)
+        cand.append((0 if outside else 1, skew, abs(gap), pl))
+    cand.sort(key=lambda t: t[:3])
+    best = cand[0][3]
     return best.normal.copy(), float(best.d)
 
 
@@ -171,7 +180,8 @@ def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str]
         if jtype is JointType.PRISMATIC:
             lo, hi = _extent(prims[p], normal)
             travel = config.drawer_travel_fraction * max(hi - lo - config.drawer_back_clearance, 0.0)
-            steps = np.append(np.arange(min(config.swing_step, travel / 4), travel, min(config.swing_step, travel / 4)), travel)
+            step = max(min(config.swing_step, travel / 4), 1e-3)
+            steps = np.append(np.arange(step, travel, step), travel) if travel > 0 else np.zeros(1)
             reach = sweep_limit(moving, lambda s: _translation(normal, s), steps, obstacles, config,
                                 reach=travel)
             upper = reach if reach < travel - 1e-9 else travel

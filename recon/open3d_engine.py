@@ -59,3 +59,4 @@ def segment_planes(points: np.ndarray, *, distance: float, count: int, seed: int
         out.append((plane, remaining[inliers]))
         remaining = np.delete(remaining, inliers)
     return out
+

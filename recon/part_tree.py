@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import networkx as nx
+import numpy as np
 
 from recon.config import ReconConfig
 from recon.model import ContactEdge
@@ -61,8 +62,14 @@ def choose_root(labels: dict[int, str], volumes: dict[int, float]) -> int:
 
 
 def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
-              contacts: tuple[ContactEdge, ...], config: ReconConfig) -> PartTree:
-    """Solve Eq. 4 for one object. ``labels``/``volumes`` : {part_id: label / m^3}."""
+              contacts: tuple[ContactEdge, ...], config: ReconConfig,
+              distances: dict[tuple[int, int], float] | None = None) -> PartTree:
+    """Solve Eq. 4 for one object. ``labels``/``volumes`` : {part_id: label / m^3}.
+
+    ``distances`` {(a, b): metres between parts}: a part that touches nothing is attached to the
+    nearest part its template expects as a parent (a handle to the nearest drawer or door) instead
+    of the root, when known.
+    """
     root = choose_root(labels, volumes)
     g = nx.DiGraph()
     g.add_nodes_from(labels)
@@ -78,6 +85,14 @@ def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
     for v in labels:
         if v != root and not g.has_edge(root, v):
             g.add_edge(root, v, weight=config.fallback_edge_weight)
+        tpl = template_for(category, labels[v])
+        if v != root and distances and tpl is not None:
+            near = [(distances.get((u, v), np.inf), u) for u in labels
+                    if u != v and labels[u] in tpl.parents and not g.has_edge(u, v)]
+            if near:
+                d, u = min(near)
+                if np.isfinite(d):
+                    g.add_edge(u, v, weight=2 * config.fallback_edge_weight)
     if len(labels) == 1:
         return PartTree(root, {}, {}, ())
     arb = nx.maximum_spanning_arborescence(g, attr="weight", preserve_attrs=True)

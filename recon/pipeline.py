@@ -13,13 +13,13 @@ from collections.abc import Callable
 
 import numpy as np
 
-from recon.completion import complete_vertical_parts
+from recon.completion import complete_mounted_parts, complete_vertical_parts
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.fitting import fit_part
 from recon.joints import estimate_joints
 from recon.model import JointType, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
-from recon.part_tree import part_tree
+from recon.part_tree import choose_root, part_tree
 from recon.primitive import Primitive
 from recon.refinement import refine_parts
 from recon.scan import Scan, read_scan
@@ -70,6 +70,11 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
         log.info("levelled the scan: up direction was %.1f deg off", np.degrees(tilt))
         timings["level_floor"] = time.perf_counter() - t_start
 
+    t0 = time.perf_counter()
+    scan, removed = _without_outliers(scan, config)
+    timings["outliers"] = time.perf_counter() - t0
+    if removed:
+        log.info("removed %d outlier points (flying pixels)", removed)
     n_obj = len(scan.objects)
     staged = []   # (obj, labels, fits, contacts, tree, prims)
     t0 = time.perf_counter()
@@ -78,9 +83,16 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
             progress(f"fitting {object_name(obj.category, obj.id)} ({len(obj.parts)} parts)", k, n_obj)
         labels = {p.part_id: p.label for p in obj.parts}
         fits = {}
-        for p in obj.parts:
+        # the base part first (most points among the base labels): its axes guide the small parts
+        base = choose_root(labels, {p.part_id: float(len(p.points)) for p in obj.parts})
+        ordered = sorted(obj.parts, key=lambda p: p.part_id != base)
+        R_ref = None
+        for p in ordered:
+            small = len(p.points) < config.small_part_points
             name, prim, score, table = fit_part(p.points, config, seed=_part_seed(seed, p.part_id),
-                                                normals=p.normals)
+                                                normals=p.normals, R_world_ref=R_ref if small else None)
+            if p.part_id == base:
+                R_ref = prim.T_world_part[:3, :3].copy()
             fits[p.part_id] = (prim, score, table, len(p.points))
             log.debug("object %d part %d (%s): %s, score %.4f", obj.id, p.part_id, p.label, name, score.total)
         prims = {i: f[0] for i, f in fits.items()}
@@ -88,12 +100,17 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
         for i, (down, up) in completed.items():
             log.info("object %d part %d (%s): extended %.3f m down, %.3f m up to its supports",
                      obj.id, i, labels[i], down, up)
+        prims, mounted = complete_mounted_parts(prims, labels, config)
+        for i, gap in mounted.items():
+            log.info("object %d part %d (%s): extended %.3f m back onto its mount", obj.id, i, labels[i], gap)
         planes = {i: prims[i].planes(config.cylinder_side_faces) for i in prims}
         contacts = contact_edges(planes, config)
-        tree = part_tree(obj.category, labels, {i: prims[i].volume for i in prims}, contacts, config)
+        tree = part_tree(obj.category, labels, {i: prims[i].volume for i in prims}, contacts, config,
+                         distances=_part_distances(prims))
         for i in tree.isolated:
             warn(f"{link_name(obj.category, obj.id, labels[i], i)}: part {i} ({labels[i]}) touches no "
-                 f"other part of object {obj.id}; fixed to the root part {tree.root}")
+                 f"other part of object {obj.id}; fixed to the nearest possible parent, part {tree.parent[i]} "
+                 f"({labels[tree.parent[i]]})")
         prims = refine_parts(prims, tree, config)
         staged.append((obj, labels, fits, contacts, tree, prims))
     timings["parts"] = time.perf_counter() - t0
@@ -159,6 +176,44 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
     if progress:
         progress("done", n_obj, n_obj)
     return Reconstruction(tuple(objects), graph, tuple(warnings), config, int(seed), timings)
+
+
+def _without_outliers(scan: Scan, config: ReconConfig) -> tuple[Scan, int]:
+    """The scan without statistical outliers, judged part by part (and the background as one cloud)."""
+    from dataclasses import replace
+
+    from recon.outliers import statistical_inliers
+
+    keep = np.ones(len(scan.points), dtype=bool)
+    for pid in np.unique(scan.part_id[scan.part_id >= 0]):
+        idx = np.flatnonzero(scan.part_id == pid)
+        keep[idx] = statistical_inliers(scan.points[idx], neighbors=config.outlier_neighbors,
+                                        std_ratio=config.outlier_std_ratio)
+    objects = []
+    for o in scan.objects:
+        parts = []
+        for p in o.parts:
+            m = keep[scan.part_id == p.part_id]
+            if len(m) != len(p.points):    # points of this part carried another object id
+                m = statistical_inliers(p.points, neighbors=config.outlier_neighbors,
+                                        std_ratio=config.outlier_std_ratio)
+            parts.append(replace(p, points=p.points[m], normals=None if p.normals is None else p.normals[m]))
+        objects.append(replace(o, parts=tuple(parts)))
+    cleaned = replace(scan, points=scan.points[keep], object_id=scan.object_id[keep], part_id=scan.part_id[keep],
+                      normals=None if scan.normals is None else scan.normals[keep],
+                      colors=None if scan.colors is None else scan.colors[keep], objects=tuple(objects))
+    return cleaned, int((~keep).sum())
+
+
+def _part_distances(prims: dict[int, Primitive]) -> dict[tuple[int, int], float]:
+    """{(a, b): distance (m) from part b's corners and centre to part a's surface, min over them}."""
+    out = {}
+    for a, pa in prims.items():
+        for b, pb in prims.items():
+            if a != b:
+                q = np.vstack([pb.corners(), pb.center[None]])
+                out[(a, b)] = float(pa.surface_distance(q).min())
+    return out
 
 
 def _front(joints, prims: dict[int, Primitive]) -> np.ndarray | None:

@@ -17,6 +17,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from recon.config import ReconConfig
+from recon.contacts import contact_pairs
 from recon.part_tree import PartTree
 from recon.primitive import Primitive
 
@@ -67,11 +68,23 @@ def refine_parts(prims: dict[int, Primitive], tree: PartTree,
             M = _rotate_about(np.eye(4), R, out[c].center)
             for v in sub:
                 out[v] = out[v].transformed(M)
-        edge = tree.edges.get(c)
-        if edge is None:
+        if tree.edges.get(c) is None:
             continue
-        pp = out[p].planes(config.cylinder_side_faces)[edge.parent_plane]
-        cp = out[c].planes(config.cylinder_side_faces)[edge.child_plane]
+        # translate onto the contact plane only when one plane pair is clearly the contact
+        pairs = contact_pairs(out[p].planes(config.cylinder_side_faces),
+                              out[c].planes(config.cylinder_side_faces), config)
+        if not pairs:
+            continue
+        pairs.sort(key=lambda t: (-t[2], t[4]))
+        best = pairs[0]
+        rivals = [t for t in pairs[1:] if t[2] >= best[2] - config.snap_ambiguity
+                  and abs(abs(float(out[p].planes(config.cylinder_side_faces)[t[0]].normal
+                                    @ out[p].planes(config.cylinder_side_faces)[best[0]].normal)) - 1) > 1e-3]
+        if rivals:
+            log.debug("part %d: contact planes ambiguous, no translation", c)
+            continue
+        pp = out[p].planes(config.cylinder_side_faces)[best[0]]
+        cp = out[c].planes(config.cylinder_side_faces)[best[1]]
         signed = float(np.mean(cp.polygon @ pp.normal + pp.d))
         if abs(signed) <= config.theta_d:
             M = np.eye(4)
