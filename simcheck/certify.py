@@ -152,6 +152,9 @@ class Session:
         self.sync_plan_world(state)
         outcome = planner(self.scene, task, seed, start, state)
         timings = {"plan": outcome.seconds}
+        if outcome.plan is not None:
+            timings["plan_collision_checks"] = outcome.plan.collision_checks
+            timings.update({f"planner_{k}": float(v) for k, v in outcome.plan.timings.items()})
         unit = est.unit
         if not outcome.ok:
             problem = outcome.status in INPUT_PROBLEM_STATUSES
@@ -195,11 +198,12 @@ class Session:
             if counter["n"] % 15 == 0:
                 camera.frame()
 
-        t = time.perf_counter()
+        t, c0 = time.perf_counter(), time.process_time()
         rollout = execute_task(w, plan, self.physics, requested_amount=requested,
                                frame_callback=camera.snap if camera else None,
                                sample_callback=on_sample if camera is not None and video else None)
         timings["execute"] = time.perf_counter() - t
+        timings["execute_cpu"] = time.process_time() - c0
         timings["simulated"] = rollout.duration
         crit.extend(rollout_criteria(rollout, criteria))
         rel_rollout, rel_images = "", []

@@ -98,12 +98,13 @@ class _Recorder:
         w = self.world
         self.t += self.config.time_step
         self.steps += 1
-        for c in w.robot_contacts(self.config.contact_tolerance):
-            key = (c.link_a, c.link_b)
-            f, d = self.contacts.get(key, (0.0, 0.0))
-            self.contacts[key] = (max(f, c.force), max(d, -c.distance))
-        for c in w.scene_link_contacts(self.moving, self.config.contact_tolerance):
-            self.obj_contacts[c.link_b] = max(self.obj_contacts.get(c.link_b, 0.0), c.force)
+        if self.steps % self.config.contact_every == 0:
+            for c in w.robot_contacts(self.config.contact_tolerance):
+                key = (c.link_a, c.link_b)
+                f, d = self.contacts.get(key, (0.0, 0.0))
+                self.contacts[key] = (max(f, c.force), max(d, -c.distance))
+            for c in w.scene_link_contacts(self.moving, self.config.contact_tolerance):
+                self.obj_contacts[c.link_b] = max(self.obj_contacts.get(c.link_b, 0.0), c.force)
         if self.steps % self.config.record_every == 0:
             self.sample()
 
@@ -185,7 +186,7 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
     rec.sample()
 
     def check_slip() -> None:
-        if world.attached and rec.T_handle_grasp is not None:
+        if rec.steps % config.contact_every == 0 and world.attached and rec.T_handle_grasp is not None:
             tool = world.robot_link_pose(robot.tool_link)[:3, 3]
             slip = float(np.linalg.norm(rec.grasp_point() - tool))
             if slip > config.grasp_break_distance:

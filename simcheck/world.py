@@ -163,6 +163,7 @@ class World:
         except pb.error as exc:
             raise SceneLoadError(f"PyBullet cannot load scene URDF {self.scene_urdf}: {exc}") from exc
         self._scene_joints, self._scene_links = self._index(body)
+        self._scene_names = {v: k for k, v in self._scene_links.items()}
         for info in self._scene_joints.values():
             if info.type in ("revolute", "prismatic"):
                 friction = max(info.friction, self.config.min_joint_friction)
@@ -170,8 +171,33 @@ class World:
                                          physicsClientId=self.client)
                 pb.changeDynamics(body, info.index, linearDamping=self.config.scene_joint_damping,
                                   angularDamping=self.config.scene_joint_damping, physicsClientId=self.client)
+        self._filter_static_pairs(body)
         self._filter_initial_overlaps(body)
         return body
+
+    def _moving_links(self) -> set[int]:
+        """Indices of scene links moved by some prismatic/revolute joint (themselves or an ancestor's)."""
+        by_child = {info.child_link: info for info in self._scene_joints.values()}
+        moving = set()
+        for link, index in self._scene_links.items():
+            cur = link
+            while cur in by_child:
+                info = by_child[cur]
+                if info.type != "fixed":
+                    moving.add(index)
+                    break
+                cur = info.parent_link
+        return moving
+
+    def _filter_static_pairs(self, body: int) -> None:
+        """No collision detection between two scene links that can never move, nor between them and the
+        floor (their relative pose is fixed: it changes nothing physically, only costs step time)."""
+        moving = self._moving_links()
+        static = sorted(set(self._scene_links.values()) - moving)
+        for i, a in enumerate(static):
+            pb.setCollisionFilterPair(body, self.floor, a, -1, 0, physicsClientId=self.client)
+            for b in static[i + 1:]:
+                pb.setCollisionFilterPair(body, body, a, b, 0, physicsClientId=self.client)
 
     def _filter_initial_overlaps(self, body: int) -> None:
         """Disable collision between scene links that already interpenetrate as loaded."""
@@ -204,6 +230,8 @@ class World:
             pb.changeDynamics(body, j, linearDamping=0.0, angularDamping=0.0, physicsClientId=self.client)
         gripper = {self._robot_links[n] for n in robot.gripper_links + robot.finger_links + (robot.tool_link,)}
         self._gripper_idx = gripper
+        self._robot_names = {v: k for k, v in self._robot_links.items()}
+        self._forces = [max(self._robot_joints[n].max_force, 1.0) for n in robot.joint_names]
         self._finger_idx = {self._robot_links[n] for n in robot.finger_links}
         self._base_idx = {self._robot_links[n] for n in robot.base_links} | {-1}
         return body
@@ -299,10 +327,9 @@ class World:
 
     def command_robot(self, q: np.ndarray, qd: np.ndarray) -> None:
         """Position-control targets for the controlled joints: ``q`` (dof,), feed-forward ``qd`` (dof,)."""
-        forces = [max(self._robot_joints[n].max_force, 1.0) for n in self.robot_spec.joint_names]
         gain = self.config.robot_position_gain
         pb.setJointMotorControlArray(self.robot, self._q_idx, pb.POSITION_CONTROL, targetPositions=list(map(float, q)),
-                                     targetVelocities=list(map(float, qd)), forces=forces,
+                                     targetVelocities=list(map(float, qd)), forces=self._forces,
                                      positionGains=[gain] * len(q), velocityGains=[1.0] * len(q),
                                      physicsClientId=self.client)
 
@@ -363,8 +390,7 @@ class World:
         """
         out = []
         c = self.client
-        rnames = {v: k for k, v in self._robot_links.items()}
-        snames = {v: k for k, v in self._scene_links.items()}
+        rnames, snames = self._robot_names, self._scene_names
         for cp in pb.getContactPoints(bodyA=self.robot, bodyB=self.scene, physicsClientId=c):
             if cp[8] <= -min_depth:
                 out.append(ContactPoint(rnames[cp[3]], snames[cp[4]], float(cp[9]), float(cp[8]), tuple(cp[5])))
@@ -376,7 +402,7 @@ class World:
     def scene_link_contacts(self, link: str, min_depth: float = 0.0) -> list[ContactPoint]:
         """Contacts of scene link ``link`` with other scene links and the floor (not with the robot)."""
         idx = self._scene_link_index(link)
-        snames = {v: k for k, v in self._scene_links.items()}
+        snames = self._scene_names
         out = []
         for cp in pb.getContactPoints(bodyA=self.scene, bodyB=self.scene, linkIndexA=idx, physicsClientId=self.client):
             if cp[8] <= -min_depth and cp[4] != idx:

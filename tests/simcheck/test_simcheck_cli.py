@@ -13,7 +13,7 @@ from simcheck.scenario import load_scenario
 from simcheck.tasks import Task, check_task, default_amount, parse_task, parse_tasks
 from simcheck.scene_joints import read_scene_joints
 
-import simcheck_wrong_estimates as wrong
+import simcheck.estimate_faults as wrong
 from simcheck_fixture_plans import DATA
 
 CAB = DATA / "panda_cabinet.urdf"

@@ -16,7 +16,7 @@ from simcheck.world import World
 
 from simcheck_fixture_plans import (CABINET, CABINET_BLOCKED, DOOR, DRAWER, ROBOT, door_plan, drawer_plan,
                                     fixture_planner, line, _seg)
-import simcheck_wrong_estimates as wrong
+import simcheck.estimate_faults as wrong
 
 
 @pytest.fixture(scope="module")

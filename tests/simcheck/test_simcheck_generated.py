@@ -19,7 +19,7 @@ from simcheck.certificate import TaskStatus
 from simcheck.certify import certify
 from simcheck.rollout import Rollout
 
-import simcheck_wrong_estimates as wrong
+import simcheck.estimate_faults as wrong
 from simcheck_fixture_plans import DATA
 
 K_DRAWER = "cabinet1_drawer4_joint"

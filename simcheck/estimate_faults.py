@@ -1,4 +1,6 @@
-"""Build WRONG estimates from a correct scene URDF by editing its XML (the input file is never modified).
+"""Faulty estimates for testing certification: WRONG scene URDFs built from a correct one by editing its XML
+(the input file is never modified). simcheck's tests and benchmark use them to show that a wrong
+estimate is never certified; users can do the same with their own scenes.
 
 Each function reads ``src``, changes one joint the way a bad reconstruction would, and writes ``out``:
 
@@ -6,7 +8,10 @@ Each function reads ``src``, changes one joint the way a bad reconstruction woul
 * :func:`flip_hinge`           -- a door hinged on the wrong side (same geometry, hinge on the other edge);
 * :func:`revolute_as_prismatic`-- a door estimated as a drawer sliding out along the door's initial motion;
 * :func:`widen_limits`         -- joint limits ``factor`` times wider than the real ones;
-* :func:`add_box`              -- (for the reference) a neighbour the estimate does not have.
+* :func:`add_box`              -- (for the reference) a neighbour the estimate does not have;
+* :func:`blocker_in_swing`     -- such a box placed in the swing of a door.
+
+Assumes upright objects (joint frames whose z is the world z), as ``scenes`` and ``recon`` write them.
 """
 
 from __future__ import annotations
@@ -16,6 +21,8 @@ from pathlib import Path
 
 import numpy as np
 from scipy.spatial.transform import Rotation
+
+__all__ = ["rotate_axis", "flip_hinge", "revolute_as_prismatic", "widen_limits", "add_box", "blocker_in_swing"]
 
 
 def _load(src):
