@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -36,13 +37,15 @@ def list_scenes() -> tuple[str, ...]:
 def make_scene(name: str, seed: int = 0, preset: str = "clean", out: str | Path | None = None,
                scan: bool = True, previews: bool = True, **scan_overrides) -> MadeScene:
     """Build scene ``name`` for ``seed``, scan it with ``preset`` (+ ``scan_overrides``) and, if ``out``
-    is given, write ``truth.urdf``, ``truth.json``, ``scan.ply``, ``labels.json``, ``scan.npz`` and
-    (``previews``) ``preview_room.png`` and ``preview_scan.png`` there.
+    is given, write ``truth.urdf``, ``truth.json``, ``scan.ply``, ``labels.json``, ``scan.npz``,
+    ``scan_meta.json`` (preset, parameters, camera poses) and (``previews``) ``preview_room.png`` and
+    ``preview_scan.png`` there. Bad names/presets/seeds raise :class:`~scenes.errors.ScenesError`.
     """
     if preset not in PRESETS:
         raise SceneSpecError(f"unknown scan preset {preset!r}; expected one of {', '.join(PRESETS)}")
     scene = build_scene(name, seed)
-    s = scan_scene(scene, params_for_preset(preset, **scan_overrides), seed) if scan else None
+    params = params_for_preset(preset, **scan_overrides)
+    s = scan_scene(scene, params, seed) if scan else None
     files: dict[str, Path] = {}
     if out is not None:
         out = Path(out)
@@ -51,7 +54,9 @@ def make_scene(name: str, seed: int = 0, preset: str = "clean", out: str | Path 
         files["truth_urdf"] = write_truth_urdf(scene, out / "truth.urdf")
         files["truth_json"] = write_truth_json(scene, out / "truth.json")
         if s is not None:
-            files.update(write_scan(s, out))
+            meta = {"format": "partscene.scan_meta/1", "scene": name, "seed": int(seed), "preset": preset,
+                    "params": dataclasses.asdict(params)}
+            files.update(write_scan(s, out, meta))
         if previews:
             from .preview import write_room_preview, write_scan_preview
 

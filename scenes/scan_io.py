@@ -17,7 +17,7 @@ from .errors import SceneSpecError
 from .scanner.scan import Scan
 
 __all__ = ["PLY_DTYPE", "write_scan_ply", "read_scan_ply", "write_labels_json", "write_scan_npz",
-           "write_scan"]
+           "write_scan_meta", "write_scan"]
 
 PLY_DTYPE = np.dtype([("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("nx", "<f4"), ("ny", "<f4"), ("nz", "<f4"),
                       ("red", "u1"), ("green", "u1"), ("blue", "u1"), ("object_id", "<i4"), ("part_id", "<i4")])
@@ -67,11 +67,22 @@ def write_scan_npz(scan: Scan, path: str | Path) -> Path:
     return write_bytes_atomic(path, buf.getvalue())
 
 
-def write_scan(scan: Scan, out_dir: str | Path) -> dict[str, Path]:
-    """Write ``scan.ply``, ``labels.json`` and ``scan.npz`` into ``out_dir``."""
+def write_scan_meta(scan: Scan, path: str | Path, meta: dict) -> Path:
+    """``scan_meta.json``: ``meta`` (scene, seed, preset, parameters) + point count + camera poses."""
+    d = dict(meta)
+    d.update(points=len(scan), frames=len(scan.T_world_cameras),
+             T_world_cameras=[[[float(x) for x in row] for row in T] for T in scan.T_world_cameras])
+    return write_text_atomic(path, json.dumps(d, indent=1) + "\n")
+
+
+def write_scan(scan: Scan, out_dir: str | Path, meta: dict | None = None) -> dict[str, Path]:
+    """Write ``scan.ply``, ``labels.json``, ``scan.npz`` (and ``scan_meta.json`` with ``meta``) into ``out_dir``."""
     out = Path(out_dir)
-    return {"scan_ply": write_scan_ply(scan, out / "scan.ply"),
-            "labels_json": write_labels_json(scan, out / "labels.json"),
-            "scan_npz": write_scan_npz(scan, out / "scan.npz")}
+    files = {"scan_ply": write_scan_ply(scan, out / "scan.ply"),
+             "labels_json": write_labels_json(scan, out / "labels.json"),
+             "scan_npz": write_scan_npz(scan, out / "scan.npz")}
+    if meta is not None:
+        files["scan_meta"] = write_scan_meta(scan, out / "scan_meta.json", meta)
+    return files
 
 

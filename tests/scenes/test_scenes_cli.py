@@ -33,6 +33,9 @@ def test_cli_make_writes_truth_scan_and_previews(tmp_path):
     labels = json.loads((out / "labels.json").read_text())
     assert json.loads(str(npz["labels"])) == labels
     truth = json.loads((out / "truth.json").read_text())
+    meta = json.loads((out / "scan_meta.json").read_text())
+    assert meta["preset"] == "clean" and meta["seed"] == 1 and meta["points"] == len(ply)
+    assert np.array(meta["T_world_cameras"]).shape == (meta["frames"], 4, 4)
     assert {o["id"] for o in labels["objects"]} == {o["id"] for o in truth["objects"]}
     # part ids are unique in the file and map to one object each
     pairs = set(zip(ply["object_id"].tolist(), ply["part_id"].tolist()))

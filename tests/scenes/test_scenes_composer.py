@@ -8,7 +8,7 @@ from shapely.geometry import Polygon
 
 from scenes.builtin import SCENES, build_scene
 from scenes.composer import RoomComposer
-from scenes.config import ComposerConfig
+from scenes.config import DEFAULT_COMPOSER, ComposerConfig
 from scenes.errors import PlacementError, SceneSpecError
 from scenes.footprints import clearance, footprint, room_polygon, sweep
 from scenes.generators import make_cabinet, make_refrigerator
@@ -32,7 +32,7 @@ def _check_room(scene):
             sup = scene.object(o.supported_by)
             assert o.T_world_object[2, 3] == pytest.approx(sup.T_world_object[2, 3] + sup.bounds()[1][2])
         if any(j.movable for j in o.joints):
-            free = clearance(o, 1.0).union(sweep(o))
+            free = clearance(o, DEFAULT_COMPOSER.front_clearance).union(sweep(o))
             assert room.contains(free), o.name
             for other in objs:
                 if other.id not in (o.id, o.supported_by) and other.supported_by != o.id:
@@ -97,7 +97,8 @@ def test_composer_keeps_the_front_clear_of_other_objects():
     b = comp.against_wall(make_cabinet(rng, "drawer_stack"), ("wall_south",))
     sc = comp.build()
     fa, fb = sc.object(a), sc.object(b)
-    assert not clearance(fa, 1.0).intersects(footprint(fb))
+    assert DEFAULT_COMPOSER.front_clearance >= 1.0
+    assert not clearance(fa, DEFAULT_COMPOSER.front_clearance).intersects(footprint(fb))
     assert isinstance(footprint(fa), Polygon) and footprint(fa).area > 0.1
 
 
