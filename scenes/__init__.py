@@ -1,7 +1,19 @@
 """partscene ``scenes``: ground-truth articulated rooms and a virtual RGB-D scanner.
 
 >>> from scenes import make_scene
->>> made = make_scene("kitchen", seed=0, preset="clean", out="out/kitchen")   # doctest: +SKIP
+>>> made = make_scene("kitchen", seed=0, preset="realistic", out="out/kitchen")   # doctest: +SKIP
+>>> made.files["truth_urdf"], made.scan.points.shape                              # doctest: +SKIP
+
+Command line: ``scenes list`` and ``scenes make NAME [--seed S] [--preset clean|realistic] --out DIR``
+(also ``python -m scenes``). Files: ``truth.urdf``, ``truth.json`` (``docs/contracts.md``),
+``scan.ply`` + ``labels.json`` + ``scan.npz`` (DESIGN.md scan format), ``scan_meta.json``,
+``preview_room.png``, ``preview_scan.png``.
+
+Layout: ``generators/`` (one module per object family, all built with ``generators.builder``),
+``composer`` + ``footprints`` (room placement), ``builtin`` (named scenes), ``truth_urdf`` /
+``truth_json`` (ground truth on disk), ``scanner/`` (camera path, open3d ray casting adapter,
+degradations, presets), ``scan_io``, ``preview``; checks in ``validate``, ``overlap`` and
+``surface_distance``; every constant in ``config`` and ``scanner.params``.
 """
 
 from .api import MadeScene, list_scenes, make_scene

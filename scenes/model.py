@@ -135,6 +135,13 @@ class Joint:
     def movable(self) -> bool:
         return self.type is not JointType.FIXED
 
+    def isclose(self, other: "Joint", atol: float = 1e-9) -> bool:
+        return ((self.type, self.parent, self.child, self.handle) == (other.type, other.parent, other.child, other.handle)
+                and np.allclose(self.axis, other.axis, atol=atol) and np.allclose(self.origin, other.origin, atol=atol)
+                and np.allclose([self.lower, self.upper, self.effort, self.velocity, self.damping, self.friction],
+                                [other.lower, other.upper, other.effort, other.velocity, other.damping,
+                                 other.friction], atol=atol))
+
 
 @dataclass(frozen=True, eq=False)
 class ArticulatedObject:
@@ -205,6 +212,17 @@ class ArticulatedObject:
         M = _joint_motion(j, q.get(part_id, 0.0))
         return T_parent @ np.linalg.inv(T_closed_parent) @ M @ T_obj_child
 
+    def isclose(self, other: "ArticulatedObject", atol: float = 1e-9) -> bool:
+        """Same ids, category, support, pose, parts, joints (frames and limits) and contacts."""
+        if (self.id, self.category, self.supported_by, self.contacts) != \
+                (other.id, other.category, other.supported_by, tuple(tuple(c) for c in other.contacts)):
+            return False
+        if len(self.parts) != len(other.parts) or len(self.joints) != len(other.joints):
+            return False
+        return (np.allclose(self.T_world_object, other.T_world_object, atol=atol)
+                and all(a.isclose(b, atol) for a, b in zip(self.parts, other.parts))
+                and all(a.isclose(b, atol) for a, b in zip(self.joints, other.joints)))
+
     # ------------------------------------------------------------------ copies
     def renumbered(self, object_id: int, first_part_id: int) -> "ArticulatedObject":
         """A copy with object id ``object_id`` and parts numbered from ``first_part_id`` in order."""
@@ -257,6 +275,15 @@ class Scene:
     objects: tuple[ArticulatedObject, ...]
     walls: tuple[Wall, ...] = ()
     room_size: np.ndarray = field(default_factory=lambda: np.array([5.0, 4.0]))
+
+    def isclose(self, other: "Scene", atol: float = 1e-9) -> bool:
+        return (self.name == other.name and self.seed == other.seed
+                and len(self.objects) == len(other.objects) and len(self.walls) == len(other.walls)
+                and np.allclose(self.room_size, other.room_size, atol=atol)
+                and all(a.isclose(b, atol) for a, b in zip(self.objects, other.objects))
+                and all(a.name == b.name and np.allclose(a.size, b.size, atol=atol)
+                        and np.allclose(a.T_world_wall, b.T_world_wall, atol=atol)
+                        for a, b in zip(self.walls, other.walls)))
 
     def object(self, object_id: int) -> ArticulatedObject:
         for o in self.objects:

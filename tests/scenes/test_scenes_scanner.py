@@ -99,6 +99,20 @@ def test_depth_noise_matches_its_model(kitchen):
     assert np.allclose(noisy.points - clean.points, err[:, None] * d / r[:, None], atol=1e-5)
 
 
+def test_realistic_points_lie_on_their_part_within_the_noise(kitchen):
+    """Without label noise, a non-outlier point is within 5 sigma(range) of its part's surface."""
+    p = params_for_preset("realistic", label_flip_prob=0.0, **RAW)
+    sc = scan_scene(kitchen, p, seed=8)
+    parts = _parts(kitchen)
+    ok = (sc.part_id >= 0) & ~sc.is_outlier
+    for pid in np.unique(sc.part_id[ok]):
+        o, part = parts[pid]
+        sel = ok & (sc.part_id == pid)
+        d = part_surface_distance(part, o.T_world_object @ part.T_object_part, sc.points[sel])
+        bound = 5 * depth_sigma(sc.range[sel], p.depth_noise_base, p.depth_noise_quadratic) + ON_SURFACE_TOL
+        assert np.all(d <= bound), o.link(part)
+
+
 def test_missing_returns_and_grazing_limit(kitchen):
     full = scan_scene(kitchen, params_for_preset("clean", **RAW), seed=2)
     holes = scan_scene(kitchen, params_for_preset("clean", missing_rate=0.2, **RAW), seed=2)

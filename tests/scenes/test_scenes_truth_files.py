@@ -55,6 +55,8 @@ def test_truth_json_follows_the_contract(kitchen_files, kitchen):
 
 def test_truth_json_round_trips(kitchen_files, kitchen):
     back = read_truth_json(kitchen_files[1])
+    assert back.isclose(kitchen, atol=1e-9)
+    assert not back.isclose(build_scene("kitchen", 1))
     assert [o.name for o in back.objects] == [o.name for o in kitchen.objects]
     for a, b in zip(kitchen.objects, back.objects):
         assert np.allclose(a.T_world_object, b.T_world_object)
