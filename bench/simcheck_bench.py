@@ -101,7 +101,7 @@ def main(argv: list[str] | None = None) -> int:
     args = p.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
     import scenes
-    from simcheck.certify import certify
+    from simcheck.certification import certify
     from simcheck.scene_joints import read_scene_joints
 
     tmp_ctx = tempfile.TemporaryDirectory(prefix="simcheck_bench_") if args.out is None else None

@@ -22,7 +22,7 @@ __all__ = ["certify", "run_scenario", "assert_certified", "Certificate", "TaskCe
            "load_robot_spec", "load_scenario", "SimcheckError", "SimcheckInputError"]
 
 _WHERE = {
-    "certify": "simcheck.certify", "PlanOutcome": "simcheck.certify",
+    "certify": "simcheck.certification", "PlanOutcome": "simcheck.certification",
     "run_scenario": "simcheck.run", "assert_certified": "simcheck.run",
     "Certificate": "simcheck.certificate", "TaskCertificate": "simcheck.certificate", "TaskStatus": "simcheck.certificate",
     "Task": "simcheck.tasks",

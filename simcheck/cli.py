@@ -63,7 +63,7 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     level = logging.ERROR if args.quiet else (logging.WARNING, logging.INFO, logging.DEBUG)[min(args.verbose, 2)]
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
-    from simcheck.certify import certify
+    from simcheck.certification import certify
     from simcheck.robot_spec_file import load_robot_spec
     from simcheck.run import run_scenario
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from simcheck.certificate import Certificate
-from simcheck.certify import certify
+from simcheck.certification import certify
 from simcheck.robot_spec_file import load_robot_spec
 from simcheck.scenario import load_scenario
 

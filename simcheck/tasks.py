@@ -58,19 +58,29 @@ class Task:
 
 
 def parse_task(text: str | Task, amount: float | None = None) -> Task:
-    """``"open-drawer:JOINT"`` (optionally ``"open-drawer:JOINT=0.2"``) -> :class:`Task`."""
+    """``"KIND:JOINT[=AMOUNT][@X,Y,Z]"`` -> :class:`Task`, e.g. ``"open-drawer:cabinet3_drawer12_joint"``,
+    ``"open-door:fridge_door=1.2"``, ``"open-drawer:d1@1.2,0.3,0.8"`` (explicit grasp point, world frame, m)."""
     if isinstance(text, Task):
         return text
     kind, sep, joint = str(text).partition(":")
     if not sep:
         raise TaskSpecError(f"task {text!r}: expected KIND:JOINT with KIND in {sorted(KINDS)}")
+    joint, at, point = joint.partition("@")
+    grasp_point = None
+    if at:
+        try:
+            grasp_point = tuple(float(v) for v in point.split(","))
+        except ValueError:
+            grasp_point = ()
+        if len(grasp_point) != 3:
+            raise TaskSpecError(f"task {text!r}: grasp point {point!r} must be X,Y,Z in metres")
     joint, eq, value = joint.partition("=")
     if eq:
         try:
             amount = float(value)
         except ValueError:
             raise TaskSpecError(f"task {text!r}: amount {value!r} is not a number") from None
-    return Task(kind=kind.strip(), joint=joint.strip(), amount=amount)
+    return Task(kind=kind.strip(), joint=joint.strip(), amount=amount, grasp_point=grasp_point)
 
 
 def parse_tasks(tasks, amounts=None) -> tuple[Task, ...]:

@@ -93,7 +93,7 @@ def door_plan(amount: float = 1.2, hinge=(0.25, -0.28), radius_xy=(0.06, 0.48), 
 
 def fixture_planner(plans: dict, status: str = "OK"):
     """A planner for :func:`simcheck.certify` that returns the hand-made ``plans`` (joint -> PlannedTask)."""
-    from simcheck.certify import PlanOutcome
+    from simcheck.certification import PlanOutcome
 
     def plan(scene_urdf, task, seed, start=None, scene_state=None):
         if status != "OK" or task.joint not in plans:

@@ -125,6 +125,9 @@ def test_scenario_errors_name_the_file_and_field(tmp_path):
 
 def test_task_parsing_and_default_amounts():
     assert parse_task(f"open-drawer:{DRAWER}=0.2") == Task("open-drawer", DRAWER, 0.2)
+    assert parse_task("open-door:d@1,2.5,0.8").grasp_point == (1.0, 2.5, 0.8)
+    with pytest.raises(TaskSpecError, match="grasp point '1,2' must be X,Y,Z"):
+        parse_task("open-door:d@1,2")
     assert [t.amount for t in parse_tasks(["open-drawer:a", "open-door:b"], [0.3])] == [0.3, 0.3]
     with pytest.raises(TaskSpecError, match="amount must be a positive number"):
         parse_task("open-drawer:a=-1")
@@ -133,3 +136,16 @@ def test_task_parsing_and_default_amounts():
     # a door's default is capped at 90 degrees (range 1.9 rad)
     assert default_amount("open-door", check_task(Task("open-door", DOOR), CAB, joints)) == pytest.approx(1.5707963)
     assert joints[DOOR].axis_world == pytest.approx([0, 0, -1]) and joints[DOOR].origin_world == pytest.approx([1.25, 0.38, 0])
+
+
+def test_a_drawer_without_any_handle_exits_2_naming_the_joint(tmp_path, capsys):
+    import xml.etree.ElementTree as ET
+    tree = ET.parse(CAB)
+    root = tree.getroot()
+    root.remove(next(l for l in root.findall("link") if l.get("name") == "cabinet1_handle13"))
+    root.remove(next(j for j in root.findall("joint") if j.get("name") == HANDLE))
+    tree.write(tmp_path / "no_handle.urdf")
+    assert main(["certify", str(tmp_path / "no_handle.urdf"), "--task", f"open-drawer:{DRAWER}",
+                 "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "no handle found" in err and DRAWER in err

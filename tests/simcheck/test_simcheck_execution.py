@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from simcheck.certificate import Certificate, TaskStatus
-from simcheck.certify import certify
+from simcheck.certification import certify
 from simcheck.errors import RolloutFormatError, SceneLoadError, TaskSpecError
 from simcheck.execute import execute_task, handle_link_for
 from simcheck.plan_recheck import densify, recheck_plan

@@ -16,7 +16,7 @@ import pytest
 
 import scenes
 from simcheck.certificate import TaskStatus
-from simcheck.certify import certify
+from simcheck.certification import certify
 from simcheck.rollout import Rollout
 
 import simcheck.estimate_faults as wrong
@@ -109,3 +109,38 @@ def test_the_correct_estimate_of_the_panda_cabinet_passes():
     cert = certify(PANDA_CABINET, [f"open-drawer:{P_DRAWER}", f"open-door:{P_DOOR}"], against=PANDA_CABINET,
                    images=False, seed=0)
     assert cert.ok, cert.summary()
+
+
+def test_any_urdf_handle_as_geometry_of_the_drawer_link_and_odd_joint_names(tmp_path):
+    """A URDF not written by us: the handle is named geometry inside the drawer link (no handle link) and
+    the joint has a name of another style. Also the user-facing API: simcheck.certify + assert_certified."""
+    import xml.etree.ElementTree as ET
+
+    import numpy as np
+
+    import simcheck
+
+    tree = ET.parse(PANDA_CABINET)
+    root = tree.getroot()
+    links = {l.get("name"): l for l in root.findall("link")}
+    hj = next(j for j in root.findall("joint") if j.get("name") == "cabinet1_handle13_joint")
+    offset = np.array([float(v) for v in hj.find("origin").get("xyz").split()])
+    for k, el in enumerate(links["cabinet1_handle13"]):
+        if el.tag in ("visual", "collision"):
+            o = el.find("origin")
+            o.set("xyz", " ".join(f"{v:.4f}" for v in np.array([float(v) for v in o.get("xyz").split()]) + offset))
+            el.set("name", f"handle_{k}")
+            links["cabinet1_drawer12"].append(el)
+    root.remove(links["cabinet1_handle13"])
+    root.remove(hj)
+    next(j for j in root.findall("joint") if j.get("name") == P_DRAWER).set("name", "Top Drawer-Slide.1")
+    tree.write(tmp_path / "theirs.urdf")
+    cert = simcheck.certify(tmp_path / "theirs.urdf", ["open-drawer:Top Drawer-Slide.1"], images=False)
+    simcheck.assert_certified(cert)
+    r = cert["Top Drawer-Slide.1"]
+    assert r.criterion("grasp_held").passed and r.criterion("opened_fraction").value > 0.95
+    bad = simcheck.certify(tmp_path / "theirs.urdf", ["open-drawer:Top Drawer-Slide.1"],
+                           against=wrong.widen_limits(tmp_path / "theirs.urdf", "Top Drawer-Slide.1", 0.5,
+                                                      tmp_path / "short.urdf"), images=False)
+    with pytest.raises(AssertionError, match="Top Drawer-Slide.1 failed"):
+        simcheck.assert_certified(bad)
