@@ -67,7 +67,7 @@ def _child_link(root, j):
     return next(l for l in root.findall("link") if l.get("name") == name)
 
 
-def _far_edge(root, j) -> np.ndarray:
+def _far_edge(root, j) -> np.ndarray:  # noqa: D401
     """Child-frame vector from the joint origin to the farthest geometry edge, perpendicular to the axis."""
     a = _vec(j.find("axis"), "xyz", "1 0 0")
     a = a / np.linalg.norm(a)
@@ -92,6 +92,8 @@ def _far_edge(root, j) -> np.ndarray:
 
 
 def flip_hinge(src, joint: str, out) -> Path:
+    """Door ``joint`` hinged on its other vertical edge: the hinge moves across the door's width, the
+    axis is reversed (so positive still opens outward) and the door's geometry stays where it was."""
     tree = _load(src)
     root = tree.getroot()
     j = _joint(root, joint)
@@ -116,6 +118,8 @@ def flip_hinge(src, joint: str, out) -> Path:
 
 
 def revolute_as_prismatic(src, joint: str, out, travel: float = 0.3) -> Path:
+    """Revolute ``joint`` estimated as a prismatic one sliding ``travel`` metres along the direction the
+    door's free edge first moves in."""
     tree = _load(src)
     root = tree.getroot()
     j = _joint(root, joint)
@@ -131,6 +135,7 @@ def revolute_as_prismatic(src, joint: str, out, travel: float = 0.3) -> Path:
 
 
 def widen_limits(src, joint: str, factor: float, out) -> Path:
+    """``joint``'s upper limit multiplied by ``factor`` (> 1: wider than the real one)."""
     tree = _load(src)
     lim = _joint(tree.getroot(), joint).find("limit")
     lim.set("upper", f"{float(lim.get('upper')) * factor:.6g}")

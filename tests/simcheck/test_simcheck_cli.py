@@ -149,3 +149,27 @@ def test_a_drawer_without_any_handle_exits_2_naming_the_joint(tmp_path, capsys):
                  "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err
     assert "no handle found" in err and DRAWER in err
+
+
+def test_robot_spec_file_round_trips_the_default_robot(tmp_path):
+    import yaml
+
+    import planners
+    from simcheck.robot_binding import sim_robot_from_spec
+    from simcheck.robot_spec_file import load_robot_spec
+
+    spec = planners.default_robot()
+    doc = {"urdf": str(spec.urdf), "base_joints": list(spec.base_joints), "arm_joints": list(spec.arm_joints),
+           "finger_joints": list(spec.finger_joints), "tool_frame": spec.tool_frame, "base_link": spec.base_link,
+           "gripper_links": list(spec.gripper_links), "home": list(spec.home),
+           "ignore_pairs": [list(p) for p in spec.ignore_pairs]}
+    (tmp_path / "robot.yaml").write_text(yaml.safe_dump(doc))
+    loaded = load_robot_spec(str(tmp_path / "robot.yaml"))
+    assert loaded.joint_names == spec.joint_names and loaded.tool_frame == spec.tool_frame
+    sim = sim_robot_from_spec(loaded)
+    assert sim.finger_links == ("panda_leftfinger", "panda_rightfinger") and sim.base_links == ("base_link",)
+    assert sim.finger_open == (0.04, 0.04) and sim.finger_closed == (0.0, 0.0)
+    (tmp_path / "bad.yaml").write_text("urdf: robot.urdf\nbase_joints: [a]\n")
+    from simcheck.errors import RobotBindingError
+    with pytest.raises(RobotBindingError, match="bad.yaml"):
+        load_robot_spec(str(tmp_path / "bad.yaml"))
