@@ -73,9 +73,10 @@ def pixel_rays(T_world_camera: np.ndarray, width: int, height: int, fov_deg: flo
     return np.broadcast_to(T_world_camera[:3, 3], d.shape), d
 
 
-def _colors(labels_rgba: list[tuple], normals: np.ndarray, dirs: np.ndarray) -> np.ndarray:
+def _colors(rgba: np.ndarray, normals: np.ndarray, dirs: np.ndarray) -> np.ndarray:
+    """(n, 3) uint8 label colours (``rgba`` (n, 4) in [0, 1]) shaded by the incidence angle."""
     shade = 0.35 + 0.65 * np.abs(np.einsum("ij,ij->i", normals, dirs))
-    return np.clip(np.asarray(labels_rgba)[:, :3] * shade[:, None] * 255, 0, 255).astype(np.uint8)
+    return np.clip(rgba[:, :3] * shade[:, None] * 255, 0, 255).astype(np.uint8)
 
 
 def scan_scene(scene: Scene, params: ScanParams, seed: int = 0) -> Scan:
@@ -125,8 +126,11 @@ def scan_scene(scene: Scene, params: ScanParams, seed: int = 0) -> Scan:
                                       floor=-np.inf)
     pts = pts + shift[:, None] * dirs
     pid = degrade.flip_boundary_labels(pts, oid, pid, params.label_boundary_width, params.label_flip_prob, rng)
-    rgba = [LABEL_RGBA.get(label_of.get(int(p), "wall"), (0.6, 0.6, 0.6, 1)) for p in pid]
-    colors = _colors(rgba, nrm, dirs)
+    # colour lookup table indexed by part id + 1 (row 0 = background/wall)
+    lut = np.tile(np.array(LABEL_RGBA["wall"], float), (max(label_of, default=0) + 2, 1))
+    for part_id, label in label_of.items():
+        lut[part_id + 1] = LABEL_RGBA.get(label, (0.6, 0.6, 0.6, 1))
+    colors = _colors(lut[pid + 1], nrm, dirs)
     log.info("scanned %s: %d frames, %d points", scene.name, len(poses), len(pts))
     return Scan(pts, nrm, colors, oid.astype(np.int32), pid.astype(np.int32), labels_from_scene(scene),
                 poses, out, frame, rng_true)

@@ -194,3 +194,11 @@ def test_unknown_preset_and_bad_seed(kitchen):
         params_for_preset("noisy")
     with pytest.raises(ScanError, match="seed must be a non-negative integer"):
         scan_scene(kitchen, params_for_preset("clean"), seed=-3)
+
+
+def test_scanning_an_empty_room_is_an_error(kitchen):
+    import dataclasses
+
+    empty = dataclasses.replace(kitchen, objects=())
+    with pytest.raises(ScanError, match="scene 'kitchen' has no objects to scan"):
+        scan_scene(empty, params_for_preset("clean", **RAW), seed=0)
