@@ -83,12 +83,17 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--seed", type=int, default=0, help="planning seed")
     ap.add_argument("--out", type=Path, default=None, help="keep generated scenes here")
     ap.add_argument("--quick", action="store_true", help="kitchen:0-1 only")
+    ap.add_argument("--open-method", default=None, choices=("auto", "ik_tracking", "constrained"),
+                    help="PlannerConfig.open_method (default: the config's default)")
     args = ap.parse_args(argv)
 
     import scenes
-    from planners import OpenTask, PlannerInputError, default_robot, plan_open_task
+    from dataclasses import replace
+
+    from planners import OpenTask, PlannerConfig, PlannerInputError, default_robot, plan_open_task
 
     robot = default_robot()
+    cfg = PlannerConfig() if args.open_method is None else replace(PlannerConfig(), open_method=args.open_method)
     spec = "kitchen:0-1" if args.quick else args.scenes
     tmp = tempfile.TemporaryDirectory() if args.out is None else None
     root = Path(tmp.name) if tmp else args.out
@@ -103,25 +108,32 @@ def main(argv: list[str] | None = None) -> int:
                 first_scene = first_scene or (out / "truth.urdf", joint)
                 t = time.perf_counter()
                 try:
-                    plan = plan_open_task(robot, out / "truth.urdf", OpenTask(kind, joint), seed=args.seed)
+                    plan = plan_open_task(robot, out / "truth.urdf", OpenTask(kind, joint), seed=args.seed,
+                                          config=cfg)
                     status, reason = plan.status.name, plan.reason
                     timings, checks = dict(plan.timings), plan.collision_checks
                 except PlannerInputError as e:
                     status, reason, timings, checks = "INPUT_ERROR", str(e), {}, 0
                 wall = time.perf_counter() - t
+                method = plan.method if status != "INPUT_ERROR" else ""
                 rows.append(dict(scene=f"{name}:{sseed}", kind=kind, category=category, joint=joint,
-                                 status=status, reason=reason, timings=timings, checks=checks, wall=wall))
-                print(f"  {name}:{sseed} {category:<12} {joint:<32} {status:<16} {wall:5.2f} s", flush=True)
+                                 status=status, reason=reason, timings=timings, checks=checks, wall=wall,
+                                 method=method))
+                print(f"  {name}:{sseed} {category:<12} {joint:<32} {status:<16} {method:<12} {wall:5.2f} s",
+                      flush=True)
         if not rows:
             print("no drawers or doors in the chosen scenes")
             return 1
 
-        print(f"\nTable 1. Planning outcome on {len(rows)} drawers/doors of {spec} (truth scenes, seed {args.seed})")
+        print(f"\nTable 1. Planning outcome on {len(rows)} drawers/doors of {spec} (truth scenes, seed {args.seed}, "
+              f"open_method {cfg.open_method})")
         print(f"{'kind':<8}{'tasks':>7}{'OK':>7}{'share':>9}")
         for kind in ("drawer", "door", "all"):
             sel = [r for r in rows if kind == "all" or r["kind"] == kind]
             ok = sum(r["status"] == "OK" for r in sel)
             print(f"{kind:<8}{len(sel):>7}{ok:>7}{(100.0 * ok / max(len(sel), 1)):>8.1f}%")
+        used = Counter(r["method"] for r in rows if r["status"] == "OK")
+        print("opening planned by: " + ", ".join(f"{k} {v}" for k, v in sorted(used.items())))
         fails = Counter((r["status"], _reason_key(r["reason"])) for r in rows if r["status"] != "OK")
         if fails:
             print("\nFailure reasons (status: reason pattern -> count)")

@@ -42,7 +42,8 @@ class PlannerConfig:
         max_joint_step: densest joint-space spacing of returned and collision-checked samples (rad or m);
         open_step_prismatic / open_step_revolute: task-joint spacing of opening waypoints;
         track_pos_tol, track_rot_tol: tool pose error allowed at any opening sample;
-        constrained_time: time limit of OMPL constrained planning of the opening (0 disables it).
+        open_method: "ik_tracking", "constrained" or "auto" (tracking, then constrained planning if it fails);
+        constrained_time: time limit of OMPL constrained planning of the opening (0 disables the fallback).
     """
 
     grasp_tilt: float = math.radians(20.0)
@@ -75,4 +76,5 @@ class PlannerConfig:
     open_step_revolute: float = math.radians(1.5)
     track_pos_tol: float = 3e-3
     track_rot_tol: float = 2e-2
-    constrained_time: float = 0.0
+    open_method: str = "auto"
+    constrained_time: float = 3.0

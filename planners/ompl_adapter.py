@@ -17,7 +17,7 @@ from ompl import base as ob
 from ompl import geometric as og
 from ompl import util as ou
 
-__all__ = ["MotionResult", "plan_joint_path"]
+__all__ = ["MotionResult", "plan_joint_path", "plan_constrained_path"]
 
 log = logging.getLogger(__name__)
 ou.setLogLevel(ou.LOG_WARN)
@@ -86,3 +86,73 @@ def plan_joint_path(start: np.ndarray, goal: np.ndarray, lower: np.ndarray, uppe
         return MotionResult(True, path, "ok", time.perf_counter() - t0)
     finally:
         del ss, si, a, b
+
+
+class _PoseConstraint(ob.Constraint):
+    """``F(x) = 0`` as an OMPL constraint; ``function(x) -> (k,)`` and ``jacobian(x) -> (k, n)`` are numpy."""
+
+    def __init__(self, n: int, k: int, function, jacobian):
+        super().__init__(n, k)
+        self._f, self._j = function, jacobian
+
+    def function(self, x, out):
+        out[:] = self._f(np.asarray(x))
+
+    def jacobian(self, x, out):
+        out[:, :] = self._j(np.asarray(x))
+
+
+def plan_constrained_path(start: np.ndarray, goal: np.ndarray, lower: np.ndarray, upper: np.ndarray,
+                          function, jacobian, co_dim: int, is_valid, *, time_limit: float, seed: int,
+                          delta: float = 0.05, tolerance: float = 1e-4, max_step: float = 0.02) -> MotionResult:
+    """Plan on the manifold ``function(x) = 0`` (``co_dim`` equations) from ``start (n,)`` to ``goal (n,)``.
+
+    OMPL's ProjectedStateSpace + RRTConnect: samples are projected onto the manifold by Newton steps with
+    ``jacobian (co_dim, n)``. The returned path is interpolated *on the manifold* so no coordinate moves more
+    than about ``max_step`` between samples; it is not re-checked here.
+    """
+    n = len(start)
+    t0 = time.perf_counter()
+    ou.setLogLevel(ou.LOG_NONE)
+    ou.RNG.setSeed(int(seed) % (2 ** 31 - 1) + 1)
+    ou.setLogLevel(ou.LOG_WARN)
+    rv = ob.RealVectorStateSpace(n)
+    bounds = ob.RealVectorBounds(n)
+    for i in range(n):
+        bounds.setLow(i, float(lower[i]))
+        bounds.setHigh(i, float(upper[i]))
+    rv.setBounds(bounds)
+    constraint = _PoseConstraint(n, co_dim, function, jacobian)
+    constraint.setTolerance(tolerance)
+    css = ob.ProjectedStateSpace(rv, constraint)
+    css.setDelta(delta)
+    csi = ob.ConstrainedSpaceInformation(css)
+    ss = og.SimpleSetup(csi)
+    buf = np.empty(n)
+
+    def valid(state) -> bool:
+        for i in range(n):
+            buf[i] = state[i]
+        return bool(is_valid(buf))
+
+    ss.setStateValidityChecker(valid)
+    a, b = css.allocState(), css.allocState()
+    a.copy([float(v) for v in start])
+    b.copy([float(v) for v in goal])
+    ss.setStartAndGoalStates(a, b)
+    ss.setPlanner(og.RRTConnect(csi))
+    try:
+        status = ss.solve(float(time_limit))
+        if not ss.haveExactSolutionPath():
+            return MotionResult(False, np.zeros((0, n)), f"constrained RRTConnect found no path in "
+                                f"{time_limit:.1f} s ({status})", time.perf_counter() - t0)
+        ss.simplifySolution(min(0.5, time_limit))
+        p = ss.getSolutionPath()
+        coarse = np.array([[p.getState(k)[i] for i in range(n)] for k in range(p.getStateCount())])
+        steps = int(np.ceil(np.sum(np.max(np.abs(np.diff(coarse, axis=0)), axis=1)) / max_step)) + 1
+        p.interpolate(max(steps, len(coarse)))
+        path = np.array([[p.getState(k)[i] for i in range(n)] for k in range(p.getStateCount())])
+        del p
+        return MotionResult(True, path, "ok", time.perf_counter() - t0)
+    finally:
+        del ss, csi, css, a, b

@@ -1,9 +1,10 @@
 """``plan_open_task``: validate the task, find the handle and a stand pose, plan approach, grasp, opening,
 release and retreat. Expected failures come back as a :class:`PlanResult` with a status and a reason.
 
-Opening method: IK tracking of the estimated handle path (a straight pull along the prismatic axis, an
-arc about the revolute hinge) with the whole body (base + arm, base motion down-weighted), densely
-interpolated and collision-checked at every sample (see :mod:`planners.motion`).
+Opening method (``PlannerConfig.open_method``): IK tracking of the estimated handle path (a straight pull
+along the prismatic axis, an arc about the revolute hinge) with the whole body, densely interpolated and
+collision-checked at every sample (:mod:`planners.motion`); OMPL constrained planning over robot joints +
+object joint (:mod:`planners.opening`); or "auto": tracking first, constrained planning when it fails.
 """
 
 from __future__ import annotations
@@ -18,7 +19,8 @@ import numpy as np
 from planners.config import PlannerConfig
 from planners.errors import TaskJointError
 from planners.handle import find_handle
-from planners.motion import densify, first_invalid, track_poses
+from planners.motion import TrackResult, densify, first_invalid, track_poses
+from planners.opening import plan_opening_constrained
 from planners.ompl_adapter import plan_joint_path
 from planners.pin_world import PlanningWorld, RobotKinematics
 from planners.robot import RobotSpec
@@ -145,17 +147,17 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     for stand in stands[:cfg.stand_tries]:
         out = _plan_from_stand(kin, world, task, stand, T_paths[stand.grasp_index], s_path, handle, cfg, rng,
                                arm, whole, weights, start, timings, seed)
-        if isinstance(out, tuple):
+        if isinstance(out[0], PlanStatus):
             failures.append(out)
             if out[0] in (PlanStatus.START_IN_COLLISION, PlanStatus.NO_PATH):
                 break
             continue
-        segments = out
+        segments, method = out
         T_link_grasp = handle.T_link_grasps[stand.grasp_index]
         return result(PlanStatus.OK, f"{task.kind} {task.joint!r}: planned opening by {amount:.3f} "
                       f"({'m' if j.type == 'prismatic' else 'rad'}) from stand {np.round(stand.base, 3).tolist()}",
                       segments=tuple(segments), T_world_base_stand=stand.T_world_base, T_link_grasp=T_link_grasp,
-                      method="ik_tracking")
+                      method=method)
     status, reason = failures[0] if len(failures) == 1 else failures[-1]
     return result(status, f"{task.kind} {task.joint!r}: {reason} ({summary}; tried {len(failures)} stand poses)",
                   T_world_base_stand=stands[0].T_world_base)
@@ -189,8 +191,18 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
     t = time.perf_counter()
     # A stand pose from which the base-fixed arm reached the whole path is tracked arm-first; otherwise the
     # whole body moves (base down-weighted). track_poses falls back to the other resolutions per step.
-    o = track_poses(kin, world, T_path, s_path, g.q[-1], arm if stand.path_share == 1.0 else whole, weights, cfg,
-                    True)
+    method = "ik_tracking"
+    o = None
+    if cfg.open_method in ("auto", "ik_tracking"):
+        o = track_poses(kin, world, T_path, s_path, g.q[-1], arm if stand.path_share == 1.0 else whole, weights,
+                        cfg, True)
+    if cfg.open_method == "constrained" or (cfg.open_method == "auto" and not o.success and cfg.constrained_time > 0):
+        oc = plan_opening_constrained(kin, world, handle.T_link_grasps[stand.grasp_index], s0, s1, g.q[-1], cfg,
+                                      seed, rng)
+        if oc.success or o is None:
+            o, method = oc, "constrained"
+        else:
+            o = TrackResult(False, o.q, o.s, f"{o.reason}; constrained planning: {oc.reason}", o.failed_at)
     timings["open"] = time.perf_counter() - t
     if not o.success:
         return PlanStatus.OPENING_FAILED, f"opening motion failed at {o.s[-1] if len(o.s) else s0:.3f}: {o.reason}"
@@ -253,7 +265,7 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
         Segment("open", o.q, o.s, T_open, "closed"),
         Segment("release", q_rel, np.full(2, s1), _fk_poses(kin, q_rel), "open"),
         Segment("retreat", rt.q, rt.s, _fk_poses(kin, rt.q), "open"),
-    ]
+    ], method
 
 
 def _what(world, q, s) -> str:
