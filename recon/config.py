@@ -104,6 +104,8 @@ class ReconConfig:
     """The moving part is shrunk by this (m, each side) when swept for collisions."""
     sweep_min_points: int = 5
     """A swept pose collides when at least this many foreign scan points fall inside it."""
+    obstacle_spacing: float = 0.02
+    """Other objects' primitives are sampled about this densely (m) as obstacles of the sweeps."""
     joint_effort: float = 100.0
     """URDF <limit effort> (N or N·m)."""
     joint_velocity: float = 1.0

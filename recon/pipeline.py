@@ -149,16 +149,27 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
     t0 = time.perf_counter()
     all_pts = scan.points
     all_part = scan.part_id
+    # other objects are solid: their fitted primitives' surfaces join the scan points as obstacles
+    # (a scan only has the faces the camera saw; a door must not swing into a neighbour's hidden side)
+    rng = np.random.default_rng(seed)
+    shells = {s[0].id: np.concatenate([_surface_samples(p, config.obstacle_spacing, rng) for p in s[5].values()])
+              for s in staged}
 
-    def obstacles_for(part_ids):
-        return all_pts[~np.isin(all_part, list(part_ids))]
+    def obstacles_for_object(oid):
+        others = [v for k, v in shells.items() if k != oid]
+
+        def obstacles_for(part_ids):
+            pts = all_pts[~np.isin(all_part, list(part_ids))]
+            return np.concatenate([pts] + others) if others else pts
+        return obstacles_for
 
     objects = []
     for k, (obj, labels, fits, contacts, tree, prims) in enumerate(staged):
         if progress:
             progress(f"joints of {object_name(obj.category, obj.id)}", k, n_obj)
         names = {i: joint_name(obj.category, obj.id, labels[i], i) for i in labels}
-        joints = estimate_joints(obj.category, names, labels, prims, tree, obstacles_for, config, warn)
+        joints = estimate_joints(obj.category, names, labels, prims, tree, obstacles_for_object(obj.id),
+                                 config, warn)
         parts = tuple(
             PartFit(i, labels[i], link_name(obj.category, obj.id, labels[i], i), prims[i],
                     float(fits[i][1].total), dict(fits[i][2]), int(fits[i][3]),
@@ -203,6 +214,13 @@ def _without_outliers(scan: Scan, config: ReconConfig) -> tuple[Scan, int]:
                       normals=None if scan.normals is None else scan.normals[keep],
                       colors=None if scan.colors is None else scan.colors[keep], objects=tuple(objects))
     return cleaned, int((~keep).sum())
+
+
+def _surface_samples(prim: Primitive, spacing: float, rng: np.random.Generator) -> np.ndarray:
+    """About one point per ``spacing``^2 of the primitive's surface, (n, 3) world."""
+    area = 2 * (prim.size[0] * prim.size[1] + prim.size[1] * prim.size[2] + prim.size[0] * prim.size[2])
+    n = int(np.clip(area / spacing**2, 50, 20000))
+    return prim.sample_surface(n, rng)[0]
 
 
 def _part_distances(prims: dict[int, Primitive]) -> dict[tuple[int, int], float]:
