@@ -23,6 +23,7 @@ import numpy as np
 from simcheck.certificate import Certificate, TaskCertificate, TaskStatus, software_versions
 from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, PhysicsConfig
 from simcheck.criteria import CriterionResult, plan_collision_free, plan_found, rollout_criteria
+from simcheck.errors import RobotBindingError
 from simcheck.estimate_diff import joint_differences
 from simcheck.execute import execute_task, handle_link_for
 from simcheck.keyframes import KeyFrameCamera
@@ -30,7 +31,7 @@ from simcheck.plan_recheck import recheck_plan
 from simcheck.planned_task import PlannedTask, planned_task_from_plan
 from simcheck.robot_binding import SimRobot, sim_robot_from_spec
 from simcheck.scene_joints import read_scene_joints, scene_link_names
-from simcheck.tasks import KINDS, Task, check_task, default_amount, parse_tasks
+from simcheck.tasks import Task, check_task, default_amount, parse_tasks
 from simcheck.world import World
 
 __all__ = ["certify", "PlanOutcome", "planners_planner", "Session", "INPUT_PROBLEM_STATUSES"]
@@ -281,7 +282,10 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
     if against is not None:
         read_scene_joints(against)
     if planner is None:
-        planner = planners_planner(robot if robot is not None and not isinstance(robot, SimRobot) else None)
+        if isinstance(robot, SimRobot):
+            raise RobotBindingError(f"certify: robot {robot.urdf} is a SimRobot; the default planner needs a "
+                                    "planners.RobotSpec (or pass planner=...)")
+        planner = planners_planner(robot)
         robot = planner.robot_spec
     if robot is None:
         raise ValueError("certify: a custom planner needs its robot (robot=...)")
