@@ -1,4 +1,4 @@
-"""Named built-in scenes (``kitchen``, ``bedroom``, ``office``) and ``random``.
+"""Named built-in scenes (``kitchen``, ``bedroom``, ``office``, ``studio``) and ``random``.
 
 Each recipe draws every size, layout and position from ``numpy.random.default_rng([seed, attempt])``;
 if a draw cannot be placed without overlap the next attempt is tried (deterministically), up to
@@ -60,6 +60,18 @@ def _office(c: RoomComposer, rng: np.random.Generator, g: GeneratorConfig) -> No
     c.around([make_chair(rng, arms=True, cfg=g), make_chair(rng, cfg=g)], desk)
 
 
+def _studio(c: RoomComposer, rng: np.random.Generator, g: GeneratorConfig) -> None:
+    cab = c.against_wall(make_cabinet(rng, MIXED_CABINET_LAYOUTS[int(rng.integers(3))], g))
+    c.on_top(make_microwave(rng, g), cab)
+    c.against_wall(make_cabinet(rng, cfg=g))
+    c.against_wall(make_cabinet(rng, cfg=g))
+    c.against_wall(make_refrigerator(rng, cfg=g))
+    c.against_wall(make_bed(rng, g))
+    table = c.in_open(make_table(rng, pedestal=False, cfg=g))
+    if len(c.around(_chairs(rng, 4, g), table)) < 3:
+        raise PlacementError(f"scene {c.name!r}: fewer than 3 chairs fit around the table")
+
+
 def _random(c: RoomComposer, rng: np.random.Generator, g: GeneratorConfig) -> None:
     n = int(rng.integers(3, 7))
     cabinets = []
@@ -83,6 +95,9 @@ _RECIPES: dict[str, tuple[Callable, tuple[float, float], tuple[float, float], st
                 "mixed drawer/door cabinet with a microwave on it, refrigerator, table and chairs"),
     "bedroom": (_bedroom, (4.5, 5.5), (4.0, 5.0), "bed, chest of drawers, door cabinet, desk and chair"),
     "office": (_office, (4.5, 5.5), (4.0, 5.0), "cabinets (one maybe with a microwave), desk and chairs"),
+    "studio": (_studio, (7.0, 8.0), (6.0, 7.0),
+               "a large room of 10+ objects: three cabinets (one with a microwave), refrigerator, bed, "
+               "table and chairs"),
     "random": (_random, (5.0, 6.5), (4.5, 5.5), "3-6 random objects of every category"),
 }
 SCENES = tuple(_RECIPES)

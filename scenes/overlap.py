@@ -59,14 +59,25 @@ def part_overlaps(obj: ArticulatedObject, q: dict[int, float] | None = None,
     return [(a, b, v) for (a, b), v in sorted(out.items())]
 
 
+def _world_boxes(obj: ArticulatedObject) -> list[tuple[Shape, np.ndarray, np.ndarray]]:
+    out = []
+    for p in obj.parts:
+        T = obj.T_world_object @ p.T_object_part
+        out += [(s, T, _aabb(s, T)) for s in p.shapes]
+    return out
+
+
 def object_overlap(a: ArticulatedObject, b: ArticulatedObject) -> float:
     """Total intersection volume (m^3) between the closed objects ``a`` and ``b`` in the world."""
+    sa_all, sb_all = _world_boxes(a), _world_boxes(b)
+    lo_a = np.min([bb[0] for _, _, bb in sa_all], axis=0)
+    hi_a = np.max([bb[1] for _, _, bb in sa_all], axis=0)
     total = 0.0
-    for pa in a.parts:
-        Ta = a.T_world_object @ pa.T_object_part
-        for pb in b.parts:
-            Tb = b.T_world_object @ pb.T_object_part
-            for sa in pa.shapes:
-                for sb in pb.shapes:
-                    total += overlap_volume(sa, Ta, sb, Tb)
+    for sb, Tb, bb in sb_all:
+        if np.any(bb[1] <= lo_a) or np.any(hi_a <= bb[0]):
+            continue
+        for sa, Ta, ba in sa_all:
+            if np.any(ba[1] <= bb[0]) or np.any(bb[1] <= ba[0]):
+                continue
+            total += float((shape_solid(sa, Ta) ^ shape_solid(sb, Tb)).volume())
     return total

@@ -110,3 +110,13 @@ def test_composer_keeps_the_front_clear_of_other_objects():
 def test_bad_scene_arguments(name, seed, match):
     with pytest.raises(SceneSpecError, match=match):
         build_scene(name, seed)
+
+
+def test_object_overlap_sees_interpenetration_but_not_touching():
+    sc = build_scene("kitchen", 0)
+    cab = next(o for o in sc.objects if o.category == "cabinet")
+    mw = next(o for o in sc.objects if o.category == "microwave")
+    assert object_overlap(cab, mw) < OVERLAP_TOLERANCE               # resting on it: touching only
+    T = mw.T_world_object.copy()
+    T[2, 3] -= 0.01                                                  # sunk 1 cm into the top panel
+    assert object_overlap(cab, mw.placed(T, mw.supported_by)) > 1e-4

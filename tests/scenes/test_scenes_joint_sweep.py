@@ -43,7 +43,7 @@ def _collisions(urdf, scene, cid):
 
 
 @pytest.mark.parametrize("name, seeds", [("kitchen", (0, 1, 2)), ("office", (0, 1)), ("bedroom", (0,)),
-                                         ("random", (0, 1))])
+                                         ("random", (0, 1)), ("studio", (0,))])
 def test_joints_sweep_their_range_without_collision(tmp_path, name, seeds):
     cid = pb.connect(pb.DIRECT)
     try:
