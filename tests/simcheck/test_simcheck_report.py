@@ -103,6 +103,7 @@ def test_every_image_decodes_and_is_not_blank_in_chromium(rendered):
     assert {"scan", "scene"} <= figures
     assert any(f.startswith("tree.") for f in figures)
     cert = json.loads((rendered["demo"] / "certificate.json").read_text())
+    assert any(t.get("rollout") for t in cert["tasks"]), "the fixture must hold an executed task"
     for task in cert["tasks"]:
         if task.get("rollout"):
             assert f"task.{task['joint']}.opening" in figures, task["joint"]
