@@ -224,8 +224,11 @@ def _stage_metrics(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
     doc = metrics_doc(scene_metrics, summary)
     _write_json_atomic(lay.metrics_json, doc)
     s = doc["summary"]
-    return (f"Chamfer {s['chamfer']}, IoU {s['iou']}, kinematic mAP {s['kinematic_map']}, joint type accuracy "
-            f"{s.get('type_accuracy')}")
+
+    def g(x):
+        return "n/a" if x is None else f"{x:.3g}"
+    return (f"Chamfer {g(s['chamfer'])}, IoU {g(s['iou'])}, kinematic mAP {g(s['kinematic_map'])}, "
+            f"joint type accuracy {g(s.get('type_accuracy'))}")
 
 
 def usable_tasks(choice: TaskChoice, scene_urdf: Path) -> TaskChoice:

@@ -99,3 +99,69 @@ def test_cli_rejects_bad_arguments(capsys):
     with pytest.raises(SystemExit) as exc:
         demo.main(["--seed", "zero"])
     assert exc.value.code == 2
+
+
+# ------------------------------------------------------------------------------------------ metrics.json
+TRUTH_JSON = __import__("pathlib").Path(__file__).with_name("test_simcheck_report_data") / "truth" / "truth.json"
+
+
+def _metrics_of(estimates_from):
+    from recon.metrics import MetricsConfig, evaluate_scene, joint_summary, read_truth
+
+    truth = read_truth(TRUTH_JSON)
+    sm = evaluate_scene(truth, estimates_from(truth), MetricsConfig(seed=0))
+    return demo.metrics_doc(sm, joint_summary([c for o in sm.objects for c in o.joints])), truth
+
+
+def test_metrics_doc_of_a_perfect_estimate_is_perfect_and_strict_json():
+    from recon.metrics import ObjectEstimate
+
+    doc, truth = _metrics_of(lambda t: [ObjectEstimate(o.id, o.category, o.primitives, o.joints,
+                                                       {e: 1.0 for e in o.contacts}) for o in t.objects])
+    json.dumps(doc, allow_nan=False)  # JSON without NaN: a browser or jq can read it
+    s = doc["summary"]
+    assert doc["format"] == "partscene.metrics/1"
+    assert s["chamfer"] == pytest.approx(0.0, abs=1e-6) and s["iou"] == pytest.approx(1.0, abs=1e-6)
+    assert s["kinematic_map"] == pytest.approx(1.0) and s["type_accuracy"] == pytest.approx(1.0)
+    assert s["missing_objects"] == 0
+    assert [o["name"] for o in doc["objects"]] == [o.name for o in truth.objects]
+    movable = [j.name for o in truth.objects for j in o.joints if str(getattr(j.type, "value", j.type)) != "fixed"]
+    assert [j["name"] for j in doc["joints"]] == movable and movable
+    assert all(j["axis_error_deg"] == pytest.approx(0.0, abs=1e-6) for j in doc["joints"])
+
+
+def test_metrics_doc_writes_undefined_metrics_of_a_missing_object_as_null():
+    doc, truth = _metrics_of(lambda t: [])
+    json.dumps(doc, allow_nan=False)
+    assert doc["summary"]["missing_objects"] == len(truth.objects)
+    assert all(o["status"] == "missing" and o["chamfer"] is None for o in doc["objects"])
+    assert all(j["est_type"] == "" and j["axis_error_deg"] is None for j in doc["joints"])
+
+
+# ------------------------------------------------------------------------------------------ usable tasks
+ZERO_RANGE_URDF = """<?xml version="1.0"?>
+<robot name="s"><link name="world"/>
+<link name="cabinet3_body11"><visual><geometry><box size="0.5 0.8 0.8"/></geometry></visual></link>
+<joint name="cabinet3_body11_joint" type="fixed"><parent link="world"/><child link="cabinet3_body11"/></joint>
+<link name="cabinet3_drawer12"><visual><geometry><box size="0.02 0.7 0.3"/></geometry></visual></link>
+<joint name="cabinet3_drawer12_joint" type="prismatic"><parent link="cabinet3_body11"/><child link="cabinet3_drawer12"/>
+<axis xyz="1 0 0"/><limit lower="0" upper="0" effort="100" velocity="1"/></joint>
+<link name="cabinet3_door13"><visual><geometry><box size="0.02 0.7 0.3"/></geometry></visual></link>
+<joint name="cabinet3_door13_joint" type="prismatic"><parent link="cabinet3_body11"/><child link="cabinet3_door13"/>
+<axis xyz="1 0 0"/><limit lower="0" upper="0.3" effort="100" velocity="1"/></joint>
+<link name="cabinet3_drawer14"><visual><geometry><box size="0.02 0.7 0.3"/></geometry></visual></link>
+<joint name="cabinet3_drawer14_joint" type="prismatic"><parent link="cabinet3_body11"/><child link="cabinet3_drawer14"/>
+<axis xyz="1 0 0"/><limit lower="0" upper="0.3" effort="100" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_usable_tasks_rejects_a_joint_without_range_or_of_the_wrong_type_naming_it(tmp_path):
+    urdf = tmp_path / "scene.urdf"
+    urdf.write_text(ZERO_RANGE_URDF)
+    choice = demo.usable_tasks(demo.TaskChoice((("open-drawer", "cabinet3_drawer12_joint"),
+                                                ("open-door", "cabinet3_door13_joint"),
+                                                ("open-drawer", "cabinet3_drawer14_joint")), ""), urdf)
+    assert choice.tasks == (("open-drawer", "cabinet3_drawer14_joint"),)
+    assert "cabinet3_drawer12_joint (rejected: " in choice.reason and "no opening range" in choice.reason
+    assert "cabinet3_door13_joint (rejected: " in choice.reason and "prismatic" in choice.reason
