@@ -16,7 +16,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from ._errors import ArtifactError
-from ._html import badge, esc, img, note, page, section
+from ._html import badge, esc, img, note, num, page, section
 from ._layout import DemoLayout
 from ._part_tree_image import png_of_part_trees, trees_from_scene_json
 from ._primitives import solids_from_truth, solids_from_urdf
@@ -106,9 +106,15 @@ def _tasks_section(lay: DemoLayout, cert: dict | None) -> str:
         criteria = task.get("criteria", [])
         if isinstance(criteria, Mapping):  # {name: {...}} form
             criteria = [{"name": k, **v} for k, v in criteria.items()]
+        unit = str(task.get("unit", "") or "")
+        facts = [f"requested opening {num(task.get('amount'), f'cert.{key}.amount', unit)}"]
+        if task.get("plan_status"):
+            facts.append(f"planner: {esc(task['plan_status'])}")
+        if isinstance(task.get("timings"), Mapping) and "total" in task["timings"]:
+            facts.append(f"took {num(task['timings']['total'], f'cert.{key}.timings.total', 's')}")
         head = (f"<h3>{esc(task.get('kind', task.get('task', 'task')))} "
                 f"<code>{esc(key)}</code> {badge(status, status == 'certified')}</h3>"
-                f"<p>{esc(task.get('reason', ''))}</p>")
+                f"<p>{esc(task.get('reason', ''))}</p><p class=\"facts\">{' &middot; '.join(facts)}</p>")
         figs = "".join(img(png, alt, f"task.{key}.{fig}")
                        for fig, alt, png in task_figures(lay, task, key, _required_fraction(cert),
                                                          executed_urdf(lay, cert)))

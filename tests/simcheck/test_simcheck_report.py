@@ -169,8 +169,11 @@ def test_numbers_shown_equal_the_certificate_and_metrics(rendered):
         source, *path = key.split(".")
         if source == "cert" and path[0] not in ("criteria", "seeds", "versions", "timings"):
             task = next(t for t in cert["tasks"] if t["joint"] == path[0])
-            crit = next(c for c in task["criteria"] if c["name"] == path[1])
-            value = crit[path[2]]
+            if path[1] in task and not isinstance(task[path[1]], list):  # a task field: amount, timings.total
+                value = _lookup(task, path[1:])
+            else:
+                crit = next(c for c in task["criteria"] if c["name"] == path[1])
+                value = crit[path[2]]
         elif source == "cert":
             value = _lookup(cert, path)
         elif source == "metrics":
