@@ -14,7 +14,8 @@ missing; the stages that need its output are ``skipped``. Nothing is made up: th
 what the stages wrote. The report is always rendered from whatever exists.
 
 Exit codes: 0 = every stage ran (whatever the certificate says: a task that failed certification is a
-result, shown in the report and on stdout); 1 = a stage failed or was unavailable; 2 = bad arguments.
+result, shown in the report and on stdout); 1 = a stage failed or was unavailable; 2 = bad arguments
+(e.g. a scene that is not built in).
 """
 
 from __future__ import annotations
@@ -77,6 +78,10 @@ class StageRecord:
     def to_json(self) -> dict:
         return {"name": self.name, "status": self.status.value, "seconds": round(self.seconds, 3),
                 "message": self.message}
+
+
+#: Packages whose exceptions are expected, self-explaining failures (no traceback in the log).
+_PROJECT_PACKAGES = ("scenes", "recon", "planners", "simcheck")
 
 
 class StageUnavailable(Exception):
@@ -327,8 +332,10 @@ def run_demo(out: str | os.PathLike, config: DemoConfig = DemoConfig()) -> DemoR
             except Exception as exc:  # noqa: BLE001 -- a stage's bug is reported, the rest still runs
                 rec = StageRecord(name, StageStatus.FAILED, time.perf_counter() - t0,
                                   f"{type(exc).__name__}: {exc}")
-                log.error("[%s] FAILED after %.1f s: %s\n%s", name, rec.seconds, rec.message,
-                          traceback.format_exc())
+                # a project error names what was wrong; anything else is a bug: show where it happened
+                ours = type(exc).__module__.split(".")[0] in _PROJECT_PACKAGES
+                log.error("[%s] FAILED after %.1f s: %s%s", name, rec.seconds, rec.message,
+                          "" if ours else "\n" + traceback.format_exc())
         result.stages.append(rec)
         _write_json_atomic(lay.demo_json, {"format": "partscene.demo/1", "config": config.__dict__,
                                            "seconds": round(time.perf_counter() - t_start, 3),
@@ -358,6 +365,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     p.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     p.add_argument("-q", "--quiet", action="store_true", help="warnings only")
     args = p.parse_args(argv)
+    try:
+        from scenes import list_scenes
+    except ImportError:
+        list_scenes = None
+    if list_scenes is not None and args.scene not in list_scenes():
+        p.error(f"unknown scene {args.scene!r}; built-in scenes: {', '.join(list_scenes())}")
     logging.basicConfig(level=logging.DEBUG if args.verbose else logging.WARNING if args.quiet else logging.INFO,
                         format="%(asctime)s %(name)s: %(message)s", datefmt="%H:%M:%S", stream=sys.stderr)
     if not args.verbose:

@@ -165,3 +165,29 @@ def test_usable_tasks_rejects_a_joint_without_range_or_of_the_wrong_type_naming_
     assert choice.tasks == (("open-drawer", "cabinet3_drawer14_joint"),)
     assert "cabinet3_drawer12_joint (rejected: " in choice.reason and "no opening range" in choice.reason
     assert "cabinet3_door13_joint (rejected: " in choice.reason and "prismatic" in choice.reason
+
+
+def test_cli_rejects_an_unknown_scene_naming_the_built_in_ones(capsys):
+    with pytest.raises(SystemExit) as exc:
+        demo.main(["--scene", "nosuchroom", "--out", "unused"])
+    assert exc.value.code == 2
+    assert "unknown scene 'nosuchroom'; built-in scenes: kitchen" in capsys.readouterr().err
+
+
+def test_demo_runs_as_a_module_in_a_subprocess(tmp_path):
+    """End to end in a subprocess through the CLI's ``main``: a stage that fails (here a scan that cannot be made:
+    zero views) is named on stdout with its error, the report is still written, and the exit code is 1."""
+    import subprocess
+    import sys
+
+    code = ("import sys, scenes, simcheck.demo as d\n"
+            "orig = scenes.make_scene\n"
+            "scenes.make_scene = lambda *a, **k: orig(*a, **{**k, 'n_frames': 0})\n"
+            "sys.exit(d.main(sys.argv[1:]))\n")
+    res = subprocess.run([sys.executable, "-c", code, "--out", str(tmp_path / "o"), "-q"], capture_output=True,
+                         text=True, timeout=120)
+    assert res.returncode == 1, res.stderr[-3000:]
+    assert f"report: {(tmp_path / 'o' / 'report.html').resolve()}" in res.stdout
+    assert "stage scene: failed: ScanError: scan parameter n_frames=0 is out of range" in res.stdout
+    assert "Traceback" not in res.stderr  # a project error explains itself
+    assert (tmp_path / "o" / "report.html").stat().st_size > 1000
