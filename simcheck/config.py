@@ -43,7 +43,9 @@ class PhysicsConfig:
             attachment is considered torn off and removed, as a real grasp would let go.
         grasp_min_finger_contacts: finger links that must touch the handle link before attaching.
         robot_position_gain: PyBullet position-control gain of the robot joints.
-        record_every: record one rollout sample every this many physics steps.
+        record_every: record one rollout sample every this many physics steps (8 = 30 Hz).
+        control_every: send new robot joint targets every this many physics steps (2 = 120 Hz; PyBullet's
+            motors hold the last target and feed-forward velocity in between).
         contact_every: query contacts (and the grasp slip) every this many physics steps (2 = 120 Hz:
             any contact lasting more than 8 ms is seen; the largest force/depth in between is kept).
         contact_tolerance: penetration depth (metres) below which a contact point is ignored when recording.
@@ -66,7 +68,8 @@ class PhysicsConfig:
     grasp_break_distance: float = 0.06
     grasp_min_finger_contacts: int = 2
     robot_position_gain: float = 0.3
-    record_every: int = 4
+    record_every: int = 8
+    control_every: int = 2
     contact_every: int = 2
     contact_tolerance: float = 0.0
 

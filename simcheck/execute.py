@@ -274,6 +274,11 @@ def _follow(world: World, rec: _Recorder, seg: PlannedSegment, vmax: np.ndarray,
     n_steps = int(np.ceil(times[-1] / config.time_step))
     tool = seg.T_world_tool[:, :3, 3] if seg.T_world_tool is not None else None
     for k in range(1, n_steps + 1):
+        if (k - 1) % config.control_every:
+            world.step()
+            rec.after_step()
+            on_step()
+            continue
         tk = min(k * config.time_step, times[-1])
         j = int(np.clip(np.searchsorted(times, tk, side="right") - 1, 0, len(times) - 2)) if len(times) > 1 else 0
         if len(times) > 1:
