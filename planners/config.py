@@ -32,6 +32,8 @@ class PlannerConfig:
             with the base fixed.
         start_backoff: when no start configuration is given, the robot starts this far behind the stand
             pose with the arm at home (falls back to the stand pose itself if that is in collision).
+    Collision
+        clearance: distance (m) robot links other than the gripper keep from the scene and the floor.
     IK
         ik_pos_tol, ik_rot_tol: convergence (m, rad); ik_restarts: random restarts per pose;
         base_weight: relative motion weight of base joints during whole-body tracking (< 1 favours the arm).
@@ -56,13 +58,14 @@ class PlannerConfig:
     door_max: float = math.radians(90.0)
     stand_distance: tuple = (0.55, 0.95)
     stand_lateral: float = 0.35
-    door_lateral: tuple = (-0.15, 0.6)
+    door_lateral: tuple = (-0.35, 0.6)
     stand_yaw_noise: float = math.radians(25.0)
     stand_candidates: int = 40
     stand_keep: int = 3
     stand_tries: int = 6
     stand_path_samples: int = 6
     start_backoff: float = 0.35
+    clearance: float = 0.01
     ik_pos_tol: float = 1e-3
     ik_rot_tol: float = 1e-2
     ik_restarts: int = 4

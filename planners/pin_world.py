@@ -135,12 +135,14 @@ class PlanningWorld:
     task_joint : URDF name of the joint whose value ``s`` each check takes.
     handle_geoms : ``{(link, collision_index)}`` scene geometries the gripper may touch when allowed.
     scene_state : values of other scene joints (default 0).
+    clearance : metres; robot links other than the gripper must stay this far from the scene and the floor
+        (coal security margin), so small tracking errors in execution do not touch the scene.
     """
 
     PREFIX = "scene::"
 
     def __init__(self, robot: RobotKinematics, scene: SceneDescription, task_joint: str,
-                 handle_geoms: set, scene_state: dict | None = None):
+                 handle_geoms: set, scene_state: dict | None = None, clearance: float = 0.0):
         self.robot = robot
         self.scene = scene
         self.task_joint = task_joint
@@ -192,6 +194,10 @@ class PlanningWorld:
         self.grasp_pairs = [k for k, cp in enumerate(self.geom.collisionPairs)
                             if (cp.first in grip and cp.second in handle) or (cp.second in grip and cp.first in handle)]
         self.handle_geom_ids = sorted(handle)
+        for k, cp in enumerate(self.geom.collisionPairs):
+            a, b = sorted((cp.first, cp.second))
+            if a < nr and b >= nr and a not in grip:
+                self.gdata.collisionRequests[k].security_margin = float(clearance)
         self._allow = False
         self.manager = pin.BroadPhaseManager_DynamicAABBTreeCollisionManager(self.model, self.geom, self.gdata)
         self.checks = 0

@@ -111,7 +111,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     amount = _validate(scene, task, s0, cfg)
     kin = robot_kinematics(robot)
     handle = find_handle(scene, task, state, cfg)
-    world = PlanningWorld(kin, scene, task.joint, set(handle.handle_geoms), state)
+    world = PlanningWorld(kin, scene, task.joint, set(handle.handle_geoms), state, cfg.clearance)
     rng = np.random.default_rng(seed)
     base = dict(task=task, joint_names=robot.joint_names, amount=amount, start_object_q=s0,
                 moving_link=handle.moving_link, grasp_link=handle.grasp_link, seed=seed, timings=timings)

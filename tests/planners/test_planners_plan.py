@@ -125,3 +125,14 @@ def test_default_amounts():
     assert default_amount("drawer", 0.0, 0.4, CFG) == pytest.approx(0.36)
     assert default_amount("door", 0.0, 1.0, CFG) == pytest.approx(0.9)
     assert default_amount("door", 0.0, 2.5, CFG) == pytest.approx(np.pi / 2)
+
+
+@pytest.mark.parametrize("kind, joint, handle", [("drawer", DRAWER, "cabinet1_handle13"),
+                                                 ("door", DOOR, "cabinet1_handle15")])
+def test_constrained_opening_follows_the_articulation_and_is_contact_free(robot, fixture_urdf, pb_contacts, kind,
+                                                                          joint, handle):
+    cfg = PlannerConfig(open_method="constrained")
+    plan = plan_open_task(robot, fixture_urdf, OpenTask(kind, joint), seed=0, config=cfg)
+    assert plan.method == "constrained"
+    _check_contract(plan, robot, plan.amount)
+    assert pb_contacts(robot, fixture_urdf, plan, {handle}) == []
