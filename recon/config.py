@@ -41,6 +41,9 @@ class ReconConfig:
     """ICP correspondence radius (m)."""
     icp_iterations: int = 30
     """ICP iteration cap per candidate."""
+    icp_min_improvement: float = 0.05
+    """ICP's pose is kept only if it lowers the score by this fraction: on noisy scans ICP otherwise
+    trades a few degrees of yaw for a fraction of a millimetre of score."""
     icp_candidate_ratio: float = 2.0
     """Only candidates whose unaligned score is within this factor of the best one are ICP-aligned."""
     face_band: float = 0.03
@@ -78,9 +81,14 @@ class ReconConfig:
     """Dist: mean distance (m) from the child polygon's vertices to the parent plane, at most this."""
     theta_c: float = 0.05
     """Cont: intersection area / child polygon area, at least this."""
-    foreign_parent_penalty: float = 0.5
+    foreign_parent_penalty: float = 0.2
     """Template prior: an edge whose parent label is not one the child's template expects (a handle
     under a body instead of its drawer) has its contact score multiplied by this in the tree."""
+    near_parent_distance: float = 0.1
+    """A part with no Eq. 1 contact to a parent its template expects is hung from the nearest such
+    part closer than this (m) (noisy scans break contacts by a few centimetres)."""
+    near_parent_weight: float = 0.3
+    """Edge weight of that attachment at zero distance (below the contact scores of real contacts)."""
     fallback_edge_weight: float = 1e-6
     """Weight of the root -> part edge given to parts that touch nothing (they are reported)."""
 
@@ -104,6 +112,9 @@ class ReconConfig:
     """The moving part is shrunk by this (m, each side) when swept for collisions."""
     sweep_min_points: int = 5
     """A swept pose collides when at least this many foreign scan points fall inside it."""
+    sweep_bleed: float = 0.03
+    """Scan points within this distance (m) of the moving parts at rest are not obstacles: they are
+    the parts' own surface with a neighbour's label (label bleed) or depth noise."""
     obstacle_spacing: float = 0.02
     """Other objects' primitives are sampled about this densely (m) as obstacles of the sweeps."""
     joint_effort: float = 100.0

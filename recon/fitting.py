@@ -59,8 +59,28 @@ def _box_in_frame(points: np.ndarray, R: np.ndarray, min_thickness: float) -> tu
     return T, np.maximum(hi - lo, min_thickness)
 
 
+def dominant_yaw(normals: np.ndarray) -> float | None:
+    """Yaw (rad, modulo 90°) of the vertical faces of ``normals`` (n, 3): the circular mean of 4·yaw
+    of the near-horizontal normals, re-taken over those within 10° of it. None without such normals."""
+    h = normals[np.abs(normals[:, 2]) < 0.5]
+    if len(h) < 10:
+        return None
+    a4 = 4.0 * np.arctan2(h[:, 1], h[:, 0])
+    mean = np.arctan2(np.sin(a4).sum(), np.cos(a4).sum())
+    near = np.abs(np.angle(np.exp(1j * (a4 - mean)))) < np.radians(40.0)
+    if near.sum() >= 10:
+        mean = np.arctan2(np.sin(a4[near]).sum(), np.cos(a4[near]).sum())
+    return float(mean / 4.0)
+
+
+def _yaw_frame(yaw: float) -> np.ndarray:
+    c, s = np.cos(yaw), np.sin(yaw)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
 def candidate_primitives(points: np.ndarray, config: ReconConfig,
-                         R_world_ref: np.ndarray | None = None) -> dict[str, Primitive]:
+                         R_world_ref: np.ndarray | None = None,
+                         normals: np.ndarray | None = None) -> dict[str, Primitive]:
     """Candidate primitives scaled from the minimum-volume oriented box of ``points`` (n, 3).
 
     With ``R_world_ref`` (3, 3) — the axes of the object's base part — the same templates are also
@@ -70,6 +90,11 @@ def candidate_primitives(points: np.ndarray, config: ReconConfig,
     T, ext = oriented_box(points, min_thickness=config.min_thickness,
                           upright_tolerance=config.upright_tolerance)
     out = _templates(points, T, ext, config)
+    yaw = None if normals is None else dominant_yaw(normals)
+    if yaw is not None:
+        # noise moves a minimum-area rectangle's corners; the faces' normals hold the yaw better
+        Ty, ey = _box_in_frame(points, _yaw_frame(yaw), config.min_thickness)
+        out["box@yaw"] = Primitive(PrimitiveKind.BOX, ey, Ty)
     if R_world_ref is not None:
         Tr, er = _box_in_frame(points, R_world_ref, config.min_thickness)
         out.update({f"{k}@ref": v for k, v in _templates(points, Tr, er, config).items()})
@@ -228,8 +253,10 @@ def fit_part(points: np.ndarray, config: ReconConfig = ReconConfig(), *, seed: i
     tree = cKDTree(points)
     best = None
     table: dict[str, float] = {}
+    cands = candidate_primitives(points, config, R_world_ref, normals)
+    cands = {k: denoised_box(v, points, config) for k, v in cands.items()}   # no-op on clean scans
     initial = {name: (prim, score_primitive(prim, points, tree, config, np.random.default_rng(seed)))
-               for name, prim in candidate_primitives(points, config, R_world_ref).items()}
+               for name, prim in cands.items()}
     cutoff = config.icp_candidate_ratio * min(s.total for _, s in initial.values())
     for name, (prim, s0) in initial.items():
         if s0.total > cutoff:          # hopeless before alignment: ICP will not rescue it
@@ -237,7 +264,7 @@ def fit_part(points: np.ndarray, config: ReconConfig = ReconConfig(), *, seed: i
             continue
         moved = _icp_refined(prim, s0, points, normals, config, np.random.default_rng(seed + 1))
         s1 = score_primitive(moved, points, tree, config, np.random.default_rng(seed))
-        prim, s = (moved, s1) if s1.total < s0.total else (prim, s0)
+        prim, s = (moved, s1) if s1.total < (1.0 - config.icp_min_improvement) * s0.total else (prim, s0)
         if prim.kind is PrimitiveKind.BOX:
             for variant in (denoised_box(prim, points, config),):
                 s2 = score_primitive(variant, points, tree, config, np.random.default_rng(seed))

@@ -108,10 +108,17 @@ def sweep_limit(moving: list[Primitive], motion, values: np.ndarray, obstacles: 
     ``obstacles`` (n, 3). ``reach`` (m) bounds how far any moving point travels (to crop obstacles).
     Returns 0.0 when the first value already collides."""
     shrunk = [m.shrunk(config.sweep_clearance) for m in moving]
+    values = np.asarray(values, dtype=np.float64)
     if len(obstacles):
-        lo = np.min([m.corners().min(axis=0) for m in moving], axis=0) - reach
-        hi = np.max([m.corners().max(axis=0) for m in moving], axis=0) + reach
+        # crop to the box swept by the moving corners (sampled finely enough for hinges)
+        probe = values[:: max(1, len(values) // 12)].tolist() + [0.0, float(values[-1])]
+        c = np.concatenate([m.transformed(motion(v)).corners() for v in probe for m in moving])
+        lo, hi = c.min(axis=0) - 0.05, c.max(axis=0) + 0.05
         obstacles = obstacles[np.all((obstacles >= lo) & (obstacles <= hi), axis=1)]
+        at_rest = np.min([m.surface_distance(obstacles) + config.sweep_bleed * m.contains(obstacles)
+                          for m in moving], axis=0) if len(obstacles) else np.zeros(0)
+        inside = np.any([m.contains(obstacles) for m in moving], axis=0) if len(obstacles) else np.zeros(0, bool)
+        obstacles = obstacles[(at_rest > config.sweep_bleed) & ~inside]
     def collides(val) -> bool:
         if not len(obstacles):
             return False
@@ -119,7 +126,6 @@ def sweep_limit(moving: list[Primitive], motion, values: np.ndarray, obstacles: 
         return sum(int(m.transformed(M).contains(obstacles).sum()) for m in shrunk) >= config.sweep_min_points
 
     # coarse pass over every 4th value, then the fine values just before the first coarse hit
-    values = np.asarray(values, dtype=np.float64)
     coarse = list(range(3, len(values), 4))
     if not coarse or coarse[-1] != len(values) - 1:
         coarse.append(len(values) - 1)
@@ -163,9 +169,9 @@ def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str]
         score = 0.0 if edge is None else edge.score
         tpl = template_for(category, labels[c])
         jtype = JointType.FIXED if tpl is None else tpl.joint
-        if jtype is not JointType.FIXED and edge is None:
-            warn(f"{names[c]}: part {c} ({labels[c]}) touches nothing; fixed to the root instead of "
-                 f"a {jtype.value} joint")
+        if jtype is not JointType.FIXED and edge is None and labels[p] not in tpl.parents:
+            warn(f"{names[c]}: part {c} ({labels[c]}) touches nothing it could move in; fixed to part "
+                 f"{p} ({labels[p]}) instead of a {jtype.value} joint")
             jtype = JointType.FIXED
         handles = [k for k in tree.children(c) if labels[k] in ("handle", "knob")]
         hprims = [prims[k] for k in handles]

@@ -66,9 +66,10 @@ def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
               distances: dict[tuple[int, int], float] | None = None) -> PartTree:
     """Solve Eq. 4 for one object. ``labels``/``volumes`` : {part_id: label / m^3}.
 
-    ``distances`` {(a, b): metres between parts}: a part that touches nothing is attached to the
-    nearest part its template expects as a parent (a handle to the nearest drawer or door) instead
-    of the root, when known.
+    ``distances`` {(a, b): metres between parts}: a part without an Eq. 1 contact to a parent its
+    template expects gets an edge from the nearest such part — weighted ``near_parent_weight``
+    (fading to 0 at ``near_parent_distance``) when that part is close, else a fallback weight — so a
+    handle hangs from the nearest drawer or door rather than the root or a foreign part.
     """
     root = choose_root(labels, volumes)
     g = nx.DiGraph()
@@ -91,7 +92,12 @@ def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
                     if u != v and labels[u] in tpl.parents and not g.has_edge(u, v)]
             if near:
                 d, u = min(near)
-                if np.isfinite(d):
+                if d < config.near_parent_distance:
+                    # the template's parent is right there but Eq. 1 missed the contact (noise):
+                    # prefer it to a foreign parent, never to a real contact with an expected parent
+                    w = config.near_parent_weight * (1.0 - d / config.near_parent_distance)
+                    g.add_edge(u, v, weight=max(w, 2 * config.fallback_edge_weight))
+                elif np.isfinite(d):
                     g.add_edge(u, v, weight=2 * config.fallback_edge_weight)
     if len(labels) == 1:
         return PartTree(root, {}, {}, ())

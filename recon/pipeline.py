@@ -139,10 +139,17 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
             warn(f"{object_name(by_id[i][0].category, i)}: floats {bottom:.3f} m above the floor with "
                  "nothing under it; left where it was scanned")
             continue
-        M = np.eye(4)
-        M[2, 3] = top - bottom
-        for k in prims:
-            prims[k] = prims[k].transformed(M)
+        if bottom < top:
+            # sunk into its support: noise below the floor / a top surface; cut the parts there
+            # instead of lifting the whole object (which would move its fitted drawers and doors)
+            for k in prims:
+                prims[k] = _clipped_below(prims[k], top)
+            bottom = min(float(p.corners()[:, 2].min()) for p in prims.values())
+        if abs(top - bottom) > 1e-9:
+            M = np.eye(4)
+            M[2, 3] = top - bottom
+            for k in prims:
+                prims[k] = prims[k].transformed(M)
     timings["support"] = time.perf_counter() - t0
 
     # joints (limits sweep against every other scan point)
@@ -214,6 +221,24 @@ def _without_outliers(scan: Scan, config: ReconConfig) -> tuple[Scan, int]:
                       normals=None if scan.normals is None else scan.normals[keep],
                       colors=None if scan.colors is None else scan.colors[keep], objects=tuple(objects))
     return cleaned, int((~keep).sum())
+
+
+def _clipped_below(prim: Primitive, z: float) -> Primitive:
+    """``prim`` with the part below height ``z`` cut off, when it stands upright (an axis within ~3°
+    of vertical) and reaches below ``z``; otherwise unchanged."""
+    R = prim.T_world_part[:3, :3]
+    k = int(np.argmax(np.abs(R[2, :])))
+    c = prim.corners()
+    lo, hi = float(c[:, 2].min()), float(c[:, 2].max())
+    if lo >= z or hi <= z or abs(R[2, k]) < 0.998 or prim.kind.value == "sphere":
+        return prim
+    if prim.kind.value == "cylinder" and k != 2:
+        return prim
+    size = prim.size.copy()
+    size[k] = (hi - z) / abs(R[2, k])
+    T = prim.T_world_part.copy()
+    T[2, 3] += (z - lo) / 2
+    return Primitive(prim.kind, size, T)
 
 
 def _surface_samples(prim: Primitive, spacing: float, rng: np.random.Generator) -> np.ndarray:
