@@ -12,6 +12,12 @@ API (see docs/contracts.md, "planners <-> simcheck")::
 
 ``plan.joint_names`` are the base joints then the arm joints (the fingers are commanded through
 ``Segment.gripper`` and ``RobotSpec.finger_open/finger_closed``).
+
+Differences from docs/contracts.md (stable since the first commit): ``OpenTask(kind, joint, amount=None,
+grasp_point=None, grasp_link=None)``; ``plan_open_task(..., start=None, scene_state=None, config=None)``;
+``PlanResult`` also carries ``grasp_link`` (the link whose bar is grasped), ``moving_link``,
+``T_link_grasp``, ``start_object_q`` and ``method`` ("ik_tracking" or "constrained"). Input that cannot be
+planned on raises ``PlannerInputError`` (file and joint named); every other outcome is a ``PlanResult``.
 """
 
 from planners.config import PlannerConfig

@@ -17,8 +17,9 @@ import time
 import numpy as np
 
 from planners.config import PlannerConfig
-from planners.errors import TaskJointError
+from planners.errors import PlannerInputError, TaskJointError
 from planners.handle import find_handle
+from planners.ik import solve_ik
 from planners.motion import TrackResult, densify, first_invalid, track_poses
 from planners.opening import plan_opening_constrained
 from planners.ompl_adapter import plan_joint_path
@@ -173,7 +174,6 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
     # Pre-grasp: backed off along the approach axis, gripper open, no contact allowed.
     t = time.perf_counter()
     T_pre = _translate_tool(T_path[0], -cfg.pregrasp_distance)
-    from planners.ik import solve_ik
     r = solve_ik(kin.tool_pose_jacobian, T_pre, q_grasp, lower, upper, arm, None, pos_tol=cfg.ik_pos_tol,
                  rot_tol=cfg.ik_rot_tol, restarts=cfg.ik_restarts, rng=rng, restart_span=np.full(spec.dof, 0.4),
                  accept=lambda q: not world.in_collision(q, s0, False))
@@ -280,7 +280,8 @@ def _start_configuration(world, spec, stand: StandPose, start, cfg, s0):
     if start is not None:
         q = np.asarray(start, float).reshape(-1)
         if q.shape != (spec.dof,):
-            raise ValueError(f"start must have {spec.dof} values ({spec.joint_names}), got {q.shape}")
+            raise PlannerInputError(f"start configuration must have {spec.dof} values ({', '.join(spec.joint_names)}), "
+                                    f"got shape {q.shape}")
         if not world.within_limits(q):
             return PlanStatus.START_IN_COLLISION, "start configuration outside the robot's joint limits"
         if world.in_collision(q, s0, False):

@@ -114,7 +114,7 @@ class RobotSpec:
 BASE_SIZE = (0.60, 0.50, 0.41)
 BASE_CLEARANCE = 0.03
 #: Where the Panda's link0 sits on the base (metres, base frame): forward of centre, on top of the box.
-ARM_MOUNT_XYZ = (0.16, 0.0, BASE_CLEARANCE + BASE_SIZE[2] + 0.01)
+ARM_MOUNT_XYZ = (0.16, 0.0, round(BASE_CLEARANCE + BASE_SIZE[2] + 0.01, 6))
 
 _BASE_TEMPLATE = """<?xml version="1.0" ?>
 <!-- partscene mobile Panda: planar base (x, y, yaw) + Franka Panda from pybullet_data.

@@ -52,7 +52,7 @@ class PlanStatus(enum.Enum):
     """Outcome of :func:`planners.plan_open_task`."""
 
     OK = "ok"
-    NO_HANDLE = "no_handle"
+    NO_HANDLE = "no_handle"   # kept for the contract; a missing handle raises HandleNotFoundError instead
     NO_STAND_POSE = "no_stand_pose"
     IK_FAILED = "ik_failed"
     NO_PATH = "no_path"

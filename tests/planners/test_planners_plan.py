@@ -136,3 +136,27 @@ def test_constrained_opening_follows_the_articulation_and_is_contact_free(robot,
     assert plan.method == "constrained"
     _check_contract(plan, robot, plan.amount)
     assert pb_contacts(robot, fixture_urdf, plan, {handle}) == []
+
+
+def test_another_robot_is_another_urdf_and_spec(robot, fixture_urdf, tmp_path):
+    """Renamed base joints and a higher arm mount: only the URDF and the spec change, not the planner."""
+    from dataclasses import replace
+    text = robot.urdf.read_text()
+    for old, new in (("base_x", "mobile_x"), ("base_y", "mobile_y"), ("base_yaw", "mobile_theta")):
+        text = text.replace(f'"{old}"', f'"{new}"')
+    text = text.replace('<origin xyz="0.16 0.0 0.45" rpy="0 0 0"/>', '<origin xyz="0.1 0.0 0.6" rpy="0 0 0"/>')
+    assert "mobile_theta" in text and '"0.1 0.0 0.6"' in text
+    urdf = tmp_path / "tall_panda.urdf"
+    urdf.write_text(text)
+    tall = replace(robot, urdf=urdf, base_joints=("mobile_x", "mobile_y", "mobile_theta"))
+    plan = plan_open_task(tall, fixture_urdf, OpenTask("drawer", DRAWER), seed=0)
+    assert plan.ok, plan.reason
+    assert plan.joint_names[:3] == ("mobile_x", "mobile_y", "mobile_theta")
+    kin = RobotKinematics(tall)
+    assert abs(kin.frame_pose(tall.home_q, "panda_link0")[2, 3] - 0.6) < 1e-9
+
+
+def test_start_of_the_wrong_length_is_an_input_error(robot, fixture_urdf):
+    from planners import PlannerInputError
+    with pytest.raises(PlannerInputError, match="start configuration must have 10 values"):
+        plan_open_task(robot, fixture_urdf, OpenTask("drawer", DRAWER), start=np.zeros(7))
