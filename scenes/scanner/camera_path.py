@@ -53,19 +53,21 @@ def _loop(room_size: np.ndarray, inset: float, n: int) -> np.ndarray:
 
 
 def camera_poses(scene: Scene, params: ScanParams, rng: np.random.Generator) -> np.ndarray:
-    """(k, 4, 4) ``T_world_camera`` for k <= ``params.n_frames`` frames (raises if none is possible)."""
+    """(k, 4, 4) ``T_world_camera``, k = max(``n_frames``, ``frames_per_object`` x objects) (raises if
+    no camera position is free)."""
     if not scene.objects:
         raise ScanError(f"scene {scene.name!r} has no objects to scan")
     blocked = unary_union([footprint(o).buffer(BODY_RADIUS) for o in scene.objects if o.supported_by is None])
-    pts = _loop(scene.room_size, params.path_inset, 4 * params.n_frames)
+    n_frames = max(params.n_frames, params.frames_per_object * len(scene.objects))
+    pts = _loop(scene.room_size, params.path_inset, 4 * n_frames)
     free = np.array([not blocked.contains(Point(p)) for p in pts])
     if not free.any():
-        pts = _loop(scene.room_size, max(params.path_inset / 2, 0.4), 4 * params.n_frames)
+        pts = _loop(scene.room_size, max(params.path_inset / 2, 0.4), 4 * n_frames)
         free = np.array([not blocked.contains(Point(p)) for p in pts])
     if not free.any():
         raise ScanError(f"scene {scene.name!r}: no free floor for the camera path (inset {params.path_inset} m)")
     pts = pts[free]
-    idx = np.linspace(0, len(pts), params.n_frames, endpoint=False).astype(int)
+    idx = np.linspace(0, len(pts), n_frames, endpoint=False).astype(int)
     walk = pts[idx]
     centres, fronts = [], []
     for o in scene.objects:

@@ -20,7 +20,8 @@ class ScanParams:
     """Everything the virtual RGB-D scanner does, with units.
 
     Camera: ``width`` x ``height`` pixels, horizontal field of view ``fov_deg`` degrees, ``max_range``
-    metres (returns beyond it are missing). Path: ``n_frames`` views from a person walking a loop
+    metres (returns beyond it are missing). Path: ``n_frames`` views (at least ``frames_per_object`` x
+    the number of objects, so big rooms get more views) from a person walking a loop
     ``path_inset`` metres inside the walls, camera height in ``camera_height`` (min, max) metres.
     Degradations (each off at 0): ``depth_noise_base`` m and ``depth_noise_quadratic`` 1/m (see the
     module doc); ``missing_rate`` probability a return is dropped; ``grazing_limit_deg``: returns whose
@@ -37,6 +38,7 @@ class ScanParams:
     fov_deg: float = 70.0
     max_range: float = 6.0
     n_frames: int = 40
+    frames_per_object: int = 5
     path_inset: float = 1.0
     camera_height: tuple[float, float] = (1.2, 1.7)
     depth_noise_base: float = 0.0
@@ -55,7 +57,8 @@ class ScanParams:
         checks = [
             ("width", self.width >= 8), ("height", self.height >= 8),
             ("fov_deg", 10.0 <= self.fov_deg <= 150.0), ("max_range", self.max_range > 0),
-            ("n_frames", self.n_frames >= 1), ("path_inset", self.path_inset >= 0),
+            ("n_frames", self.n_frames >= 1), ("frames_per_object", self.frames_per_object >= 0),
+            ("path_inset", self.path_inset >= 0),
             ("camera_height", 0.0 < self.camera_height[0] <= self.camera_height[1]),
             ("depth_noise_base", self.depth_noise_base >= 0),
             ("depth_noise_quadratic", self.depth_noise_quadratic >= 0),
@@ -75,7 +78,8 @@ PRESETS = {
     "clean": ScanParams(),
     "realistic": ScanParams(depth_noise_base=0.0012, depth_noise_quadratic=0.0019, missing_rate=0.05,
                             grazing_limit_deg=80.0, outlier_rate=0.002, outlier_range=0.3,
-                            label_boundary_width=0.015, label_flip_prob=0.3, voxel_size=0.015),
+                            label_boundary_width=0.015, label_flip_prob=0.3, voxel_size=0.012,
+                            background_voxel=0.07),
 }
 
 

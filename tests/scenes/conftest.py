@@ -10,7 +10,7 @@ from scenes.truth_json import write_truth_json
 from scenes.truth_urdf import write_truth_urdf
 
 # a cheap scan: fewer, smaller frames than the presets (same code path)
-SMALL = dict(width=160, height=120, n_frames=24)
+SMALL = dict(width=160, height=120, n_frames=24, frames_per_object=0)
 
 
 @pytest.fixture(scope="session")

@@ -15,7 +15,7 @@ from scenes.surface_distance import part_surface_distance
 # float32 ray casting (relative error ~1e-7 of a few metres) + cylinder faceting
 ON_SURFACE_TOL = FACET_TOLERANCE + 5e-5   # m
 # a cheaper scan for the statistics tests: no downsampling, so every return is kept
-RAW = dict(width=96, height=72, n_frames=10, voxel_size=0.0, background_voxel=0.0)
+RAW = dict(width=96, height=72, n_frames=10, frames_per_object=0, voxel_size=0.0, background_voxel=0.0)
 
 
 def _eyes(scan):
@@ -202,3 +202,14 @@ def test_scanning_an_empty_room_is_an_error(kitchen):
     empty = dataclasses.replace(kitchen, objects=())
     with pytest.raises(ScanError, match="scene 'kitchen' has no objects to scan"):
         scan_scene(empty, params_for_preset("clean", **RAW), seed=0)
+
+
+def test_bigger_rooms_get_more_views():
+    from scenes.builtin import build_scene
+    from scenes.scanner.camera_path import camera_poses
+
+    studio = build_scene("studio", 0)
+    p = params_for_preset("clean", n_frames=10, frames_per_object=5)
+    assert len(camera_poses(studio, p, np.random.default_rng(0))) == 5 * len(studio.objects)
+    p = params_for_preset("clean", n_frames=10, frames_per_object=0)
+    assert len(camera_poses(studio, p, np.random.default_rng(0))) == 10
