@@ -153,10 +153,10 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
             if out[0] in (PlanStatus.START_IN_COLLISION, PlanStatus.NO_PATH):
                 break
             continue
-        segments, method = out
+        segments, method, note = out
         T_link_grasp = handle.T_link_grasps[stand.grasp_index]
         return result(PlanStatus.OK, f"{task.kind} {task.joint!r}: planned opening by {amount:.3f} "
-                      f"({'m' if j.type == 'prismatic' else 'rad'}) from stand {np.round(stand.base, 3).tolist()}",
+                      f"({'m' if j.type == 'prismatic' else 'rad'}) from stand {np.round(stand.base, 3).tolist()}{note}",
                       segments=tuple(segments), T_world_base_stand=stand.T_world_base, T_link_grasp=T_link_grasp,
                       method=method)
     status, reason = failures[0] if len(failures) == 1 else failures[-1]
@@ -218,8 +218,13 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
             break
         dist /= 2
     timings["retreat"] = time.perf_counter() - t
+    note = ""
     if not rt.success:
-        return PlanStatus.IK_FAILED, f"retreat after release failed: {rt.reason}"
+        # The opening is done once the gripper is open; a robot boxed in by the opened part and a wall stays
+        # where it released (a two-sample, zero-length retreat) rather than failing the task.
+        log.warning("%s: retreat blocked (%s); the robot stays where it released", task.joint, rt.reason)
+        note = f"; retreat blocked ({rt.reason}), the robot stays at the release pose"
+        rt = TrackResult(True, np.repeat(o.q[-1:], 2, axis=0), np.full(2, s1), "blocked", -1)
     # Approach: OMPL from the start configuration to the pre-grasp.
     t = time.perf_counter()
     q_start = _start_configuration(world, spec, stand, start, cfg, s0)
@@ -265,7 +270,7 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
         Segment("open", o.q, o.s, T_open, "closed"),
         Segment("release", q_rel, np.full(2, s1), _fk_poses(kin, q_rel), "open"),
         Segment("retreat", rt.q, rt.s, _fk_poses(kin, rt.q), "open"),
-    ], method
+    ], method, note
 
 
 def _what(world, q, s) -> str:
