@@ -73,6 +73,15 @@ class ReconConfig:
     """Legs are extended (completion.py) to a surface above / below them at most this far (m)."""
 
     # --- surface planes and contacts, Eq. 1 (planes.py, contacts.py) ---
+    planes: str = "exact"
+    """Where the planes Π of the contact test come from: "exact" primitive faces or "ransac" planes
+    of the part's points (the paper's way); see planes.py."""
+    ransac_planes: int = 6
+    """At most this many RANSAC planes per part."""
+    ransac_distance: float = 0.01
+    """RANSAC inlier distance (m)."""
+    ransac_min_fraction: float = 0.05
+    """A RANSAC plane needs at least this fraction of the part's points."""
     cylinder_side_faces: int = 8
     """A cylinder's side is represented by this many tangent rectangles (planes of Π)."""
     theta_a: float = 0.97
@@ -127,6 +136,8 @@ class ReconConfig:
     """URDF <dynamics friction> of movable joints (N or N·m)."""
 
     # --- refinement, Alg. 1 (refinement.py) ---
+    refine: bool = True
+    """Run Alg. 1 (off only to measure what it does)."""
     refine_align: float = 0.9
     """Plane normals with |cos| above this are paired for the Kabsch rotation (cos 26°)."""
     refine_max_angle: float = 0.35

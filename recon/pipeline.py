@@ -20,6 +20,7 @@ from recon.fitting import fit_part
 from recon.joints import estimate_joints
 from recon.model import JointType, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
 from recon.part_tree import choose_root, part_tree
+from recon.planes import part_planes
 from recon.primitive import Primitive
 from recon.refinement import refine_parts
 from recon.scan import Scan, read_scan
@@ -103,7 +104,8 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
         prims, mounted = complete_mounted_parts(prims, labels, config)
         for i, gap in mounted.items():
             log.info("object %d part %d (%s): extended %.3f m back onto its mount", obj.id, i, labels[i], gap)
-        planes = {i: prims[i].planes(config.cylinder_side_faces) for i in prims}
+        pts_by_part = {p.part_id: p.points for p in obj.parts}
+        planes = {i: part_planes(prims[i], pts_by_part[i], config, _part_seed(seed, i)) for i in prims}
         contacts = contact_edges(planes, config)
         tree = part_tree(obj.category, labels, {i: prims[i].volume for i in prims}, contacts, config,
                          distances=_part_distances(prims))
@@ -111,7 +113,8 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
             warn(f"{link_name(obj.category, obj.id, labels[i], i)}: part {i} ({labels[i]}) touches no "
                  f"other part of object {obj.id}; fixed to the nearest possible parent, part {tree.parent[i]} "
                  f"({labels[tree.parent[i]]})")
-        prims = refine_parts(prims, tree, config)
+        if config.refine:
+            prims = refine_parts(prims, tree, config)
         staged.append((obj, labels, fits, contacts, tree, prims))
     timings["parts"] = time.perf_counter() - t0
 
