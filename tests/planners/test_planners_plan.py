@@ -160,3 +160,15 @@ def test_start_of_the_wrong_length_is_an_input_error(robot, fixture_urdf):
     from planners import PlannerInputError
     with pytest.raises(PlannerInputError, match="start configuration must have 10 values"):
         plan_open_task(robot, fixture_urdf, OpenTask("drawer", DRAWER), start=np.zeros(7))
+
+
+def test_plan_from_a_carried_scene_state(robot, fixture_urdf):
+    """A drawer already open 0.1 m (world state carried from an earlier task) opens the rest of its range, and
+    the other joint's state is part of the collision world."""
+    state = {DRAWER: 0.1, DOOR: 0.3}
+    plan = plan_open_task(robot, fixture_urdf, OpenTask("drawer", DRAWER), seed=0, scene_state=state)
+    assert plan.ok, plan.reason
+    assert plan.start_object_q == pytest.approx(0.1) and plan.amount == pytest.approx(0.25)
+    op = plan.segment("open")
+    assert op.object_q[0] == pytest.approx(0.1) and op.object_q[-1] == pytest.approx(0.35)
+    assert np.all(plan.segment("approach").object_q == pytest.approx(0.1))
