@@ -27,6 +27,8 @@ def _parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", required=True)
 
     def common(sp):
+        sp.add_argument("-v", "--verbose", action="count", default=argparse.SUPPRESS, help="more logging")
+        sp.add_argument("-q", "--quiet", action="store_true", default=argparse.SUPPRESS, help="only errors")
         sp.add_argument("--out", default="simcheck-out", help="output folder (certificate.json, rollouts/, images/)")
         sp.add_argument("--seed", type=int, default=None, help="planning seed (default 0)")
         sp.add_argument("--gui", action="store_true", help="PyBullet GUI window (needs a display)")
@@ -61,8 +63,11 @@ def _input_errors() -> tuple[type, ...]:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
+    # default: WARNING for the libraries, one progress line per task from simcheck; -v: INFO; -vv: DEBUG
     level = logging.ERROR if args.quiet else (logging.WARNING, logging.INFO, logging.DEBUG)[min(args.verbose, 2)]
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
+    if not args.quiet:
+        logging.getLogger("simcheck.certification").setLevel(min(level, logging.INFO))
     from simcheck.certification import certify
     from simcheck.robot_spec_file import load_robot_spec
     from simcheck.run import run_scenario

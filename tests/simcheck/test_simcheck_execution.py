@@ -23,7 +23,7 @@ import simcheck.estimate_faults as wrong
 def good(tmp_path_factory):
     """Drawer and door certified on the fixture; the certificate and rollouts written to a temp folder."""
     out = tmp_path_factory.mktemp("good")
-    cert = certify(CABINET, [f"open-drawer:{DRAWER}", f"open-door:{DOOR}"], robot=ROBOT, out=out,
+    cert = certify(CABINET, [f"open-drawer:{DRAWER}", f"open-door:{DOOR}"], robot=ROBOT, out=out, video=True,
                    planner=fixture_planner({DRAWER: drawer_plan(), DOOR: door_plan()}))
     return cert, out
 
@@ -65,8 +65,12 @@ def test_rollout_is_saved_with_every_array_and_loads_back(good):
 
 def test_key_frames_are_written_as_png(good):
     cert, out = good
-    images = cert[DOOR].images
+    images = [p for p in cert[DOOR].images if p.endswith(".png")]
     assert {p.rsplit("_", 1)[-1] for p in images} == {"start.png", "grasped.png", "opened.png", "end.png"}
+    gif = [p for p in cert[DOOR].images if p.endswith(".gif")]
+    assert len(gif) == 1 and (out / gif[0]).read_bytes()[:6] == b"GIF89a"
+    from PIL import Image
+    assert Image.open(out / gif[0]).n_frames >= 10
     for p in images:
         data = (out / p).read_bytes()
         assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 2000
