@@ -58,7 +58,8 @@ class RoomComposer:
         key = id(cand.parts)
         if key not in self._local or self._local[key][0] is not cand.parts:   # ids can be reused
             local = cand.placed(np.eye(4))
-            self._local[key] = (cand.parts, footprint(local), keepout(local, self.cfg.front_clearance))
+            self._local[key] = (cand.parts, footprint(local),
+                                keepout(local, self.cfg.front_clearance, self.cfg.robot_reach))
         T = cand.T_world_object
         m = [T[0, 0], T[0, 1], T[1, 0], T[1, 1], T[0, 3], T[1, 3]]
         _, fp, ko = self._local[key]

@@ -86,12 +86,15 @@ class ComposerConfig:
 
     ``front_clearance``: free floor depth in front of an articulated object's closed front (besides
     its opening parts' sweep) kept for a mobile robot: a robot with a ~0.7 m base standing 0.5-0.9 m
-    in front of a handle reaches ~1.25 m out. ``wall_gap``: gap between an object's back and its wall.
+    in front of a handle reaches ~1.25 m out. ``robot_reach``: no other object within this distance of
+    a handle's path over its joint range (in front of the object), so a robot that follows a swinging
+    door's handle does not run into a neighbour. ``wall_gap``: gap between an object's back and its wall.
     ``object_gap``: minimum gap between the footprints of two objects. ``wall_thickness``/
     ``wall_height``: wall boxes. ``max_tries``: random placements tried per object.
     """
 
     front_clearance: float = 1.3
+    robot_reach: float = 0.9
     wall_gap: float = 0.02
     object_gap: float = 0.05
     wall_thickness: float = 0.1

@@ -4,19 +4,22 @@
 * ``sweep``: the convex hulls of every movable part (and the parts it carries) sampled across
   [lower, upper] -- the floor a fully opening drawer/door needs;
 * ``clearance``: for an articulated object, a rectangle ``front_clearance`` deep in front of the
-  object (beyond its closed front) as wide as the object -- where a mobile robot stands.
+  object (beyond its closed front) as wide as the object -- where a mobile robot stands;
+* ``handle_reach``: the path of every handle across its joint range, grown by ``robot_reach`` and
+  kept in front of the object -- where a robot holding the handle while it opens may be.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from shapely.affinity import affine_transform
 from shapely.geometry import MultiPoint, Polygon, box
 from shapely.ops import unary_union
 
 from .model import ArticulatedObject
 from .poses import transform_points
 
-__all__ = ["footprint", "sweep", "clearance", "keepout", "subtree_parts"]
+__all__ = ["footprint", "sweep", "clearance", "handle_reach", "keepout", "subtree_parts"]
 
 _SWEEP_SAMPLES = 9
 
@@ -67,9 +70,29 @@ def clearance(obj: ArticulatedObject, depth: float) -> Polygon:
     return Polygon(_world_xy(obj, rect))
 
 
-def keepout(obj: ArticulatedObject, depth: float) -> Polygon:
-    """Footprint, sweep and clearance together: the floor no other object may occupy."""
-    return unary_union([footprint(obj), sweep(obj), clearance(obj, depth)])
+def handle_reach(obj: ArticulatedObject, reach: float, samples: int = _SWEEP_SAMPLES) -> Polygon:
+    """Floor within ``reach`` m of any handle's path over its joint's range, in front of the object."""
+    if reach <= 0:
+        return Polygon()
+    lo, hi = obj.bounds()
+    zones = []
+    for j in obj.joints:
+        if not j.movable or j.handle is None:
+            continue
+        pts = np.array([obj.T_object_part_at(j.handle, {j.child: q})[:3, 3]
+                        for q in np.linspace(j.lower, j.upper, samples)])
+        zone = MultiPoint(pts[:, :2]).convex_hull.buffer(reach)
+        front = box(hi[0], lo[1] - 2 * reach, hi[0] + 2 * reach + 2.0, hi[1] + 2 * reach)
+        local = zone.intersection(front)
+        if not local.is_empty:
+            T = obj.T_world_object
+            zones.append(affine_transform(local, [T[0, 0], T[0, 1], T[1, 0], T[1, 1], T[0, 3], T[1, 3]]))
+    return unary_union(zones) if zones else Polygon()
+
+
+def keepout(obj: ArticulatedObject, depth: float, reach: float = 0.0) -> Polygon:
+    """Footprint, sweep, clearance and handle reach together: the floor no other object may occupy."""
+    return unary_union([footprint(obj), sweep(obj), clearance(obj, depth), handle_reach(obj, reach)])
 
 
 def room_polygon(room_size) -> Polygon:

@@ -10,7 +10,7 @@ from scenes.builtin import SCENES, build_scene
 from scenes.composer import RoomComposer
 from scenes.config import DEFAULT_COMPOSER, ComposerConfig
 from scenes.errors import PlacementError, SceneSpecError
-from scenes.footprints import clearance, footprint, room_polygon, sweep
+from scenes.footprints import clearance, footprint, handle_reach, room_polygon, sweep
 from scenes.generators import make_cabinet, make_refrigerator
 from scenes.overlap import OVERLAP_TOLERANCE, object_overlap
 
@@ -34,6 +34,7 @@ def _check_room(scene):
         if any(j.movable for j in o.joints):
             free = clearance(o, DEFAULT_COMPOSER.front_clearance).union(sweep(o))
             assert room.contains(free), o.name
+            free = free.union(handle_reach(o, DEFAULT_COMPOSER.robot_reach))
             for other in objs:
                 if other.id not in (o.id, o.supported_by) and other.supported_by != o.id:
                     assert not free.intersects(footprint(other)), f"{other.name} blocks {o.name}"
