@@ -158,6 +158,8 @@ def render_report(demo_dir: str | os.PathLike, out_html: str | os.PathLike | Non
     truth, graph = read_json(lay.truth_json), read_json(lay.graph_json)
     metrics, cert, demo = read_json(lay.metrics_json), read_json(lay.certificate_json), read_json(lay.demo_json)
 
+    if cert is not None and not isinstance(cert.get("tasks"), list):  # fail before drawing anything
+        raise ArtifactError(f"{lay.certificate_json}: expected a list under 'tasks'")
     sections = []
     if demo is not None:
         sections.append(("pipeline", "Pipeline", pipeline_table(demo.get("stages", []))))

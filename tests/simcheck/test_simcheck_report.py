@@ -70,12 +70,15 @@ def rendered(tmp_path_factory) -> dict:
         pytest.skip("chromium is not installed (apt-get install chromium chromium-driver; `make setup` does)")
     tmp = tmp_path_factory.mktemp("report")
     demo = _demo_dir(tmp)
+    before = {p: p.read_bytes() for p in demo.rglob("*") if p.is_file()}
     html_path = render_report(demo)
+    after = {p: p.read_bytes() for p in demo.rglob("*") if p.is_file() and p != html_path}
     html = html_path.read_text()
     probe_path = demo / "probe.html"
     probe_path.write_text(html.replace("</body>", PROBE + "</body>"))
     with tempfile.TemporaryDirectory() as profile:
-        dom = _chromium(["--virtual-time-budget=10000", "--dump-dom", probe_path.as_uri()], Path(profile))
+        dom = _chromium([f"--window-size={WIDTH},2000", "--virtual-time-budget=10000", "--dump-dom",
+                         probe_path.as_uri()], Path(profile))
     m = re.search(r'<pre id="probe">(.*?)</pre>', dom.stdout, re.S)
     assert m, f"chromium did not run the probe: rc={dom.returncode} stderr={dom.stderr[-2000:]}"
     probe = json.loads(m.group(1).replace("&quot;", '"').replace("&lt;", "<").replace("&gt;", ">")
@@ -86,7 +89,8 @@ def rendered(tmp_path_factory) -> dict:
         res = _chromium([f"--window-size={WIDTH},{height}", f"--screenshot={shot}", html_path.as_uri()],
                         Path(profile))
     assert shot.exists(), f"no screenshot: rc={res.returncode} stderr={res.stderr[-2000:]}"
-    return {"demo": demo, "html": html, "probe": probe, "screenshot": Image.open(shot).convert("RGB")}
+    return {"demo": demo, "html": html, "probe": probe, "screenshot": Image.open(shot).convert("RGB"),
+            "inputs_before": before, "inputs_after": after}
 
 
 def test_report_is_self_contained(rendered):
@@ -223,16 +227,17 @@ def test_missing_demo_dir_is_rejected(tmp_path):
 
 def test_missing_artifacts_are_announced_not_invented(tmp_path):
     demo = _demo_dir(tmp_path)
-    (demo / "certificate.json").unlink()
+    for name in ("certificate.json", "graph.json", "scene.urdf", "metrics.json", "truth/scan.npz"):
+        (demo / name).unlink()
     shutil.rmtree(demo / "rollouts", ignore_errors=True)
     html = render_report(demo).read_text()
-    assert "Not available: the certificate (certificate.json was not found" in html
-    assert 'data-key="cert.' not in html
+    for what, name in (("the certificate", "certificate.json"), ("the scan", "scan.npz"),
+                       ("the reconstruction", "scene.urdf"), ("the estimated part trees", "graph.json"),
+                       ("the metrics", "metrics.json")):
+        assert f"Not available: {what} ({name} was not found" in html, what
+    assert 'data-key="cert.' not in html and 'data-key="metrics.' not in html
+    assert 'data-figure="scene"' in html  # the truth alone is still drawn
 
 
-def test_inputs_are_not_modified(tmp_path):
-    demo = _demo_dir(tmp_path)
-    before = {p: p.read_bytes() for p in demo.rglob("*") if p.is_file()}
-    render_report(demo, tmp_path / "elsewhere" / "r.html")
-    after = {p: p.read_bytes() for p in demo.rglob("*") if p.is_file()}
-    assert before == after
+def test_inputs_are_not_modified(rendered):
+    assert rendered["inputs_before"] == rendered["inputs_after"]
