@@ -13,7 +13,9 @@ class PlannerConfig:
     """Planning parameters. Units: metres, radians, seconds.
 
     Grasp
-        grasp_tilt: downward tilt of the approach for horizontal handle bars (STACK: ~20 deg helps).
+        grasp_tilt: downward tilt of the approach for horizontal handle bars (STACK: ~20 deg helps); a level
+            grasp is the fallback candidate.
+        grasp_backoff: fallback grasp held this much further out than the bar centre (short knobs).
         pregrasp_distance: tool stand-off before the straight grasp motion, along the approach axis.
         retreat_distance: straight retreat along the approach axis after releasing; when blocked, half
             of it, down to min_retreat_distance, is tried.
@@ -49,6 +51,7 @@ class PlannerConfig:
     """
 
     grasp_tilt: float = math.radians(20.0)
+    grasp_backoff: float = 0.015
     pregrasp_distance: float = 0.10
     retreat_distance: float = 0.12
     min_retreat_distance: float = 0.04

@@ -12,8 +12,9 @@ No handle raises :class:`planners.errors.HandleNotFoundError` naming the file an
 Grasp frame (the robot's tool frame at grasp): origin at the handle bar's centre, z (approach) against
 the part's outward direction (the direction the grasp point moves when the joint opens), x along the
 bar, so the fingers (closing along y) close across the bar's thin dimension. Horizontal bars get a
-downward approach tilt (:attr:`PlannerConfig.grasp_tilt`). Two candidates are returned, the second
-turned half a turn about the approach axis, because either finger may come from above.
+downward approach tilt (:attr:`PlannerConfig.grasp_tilt`). Several candidates are returned (tilted or
+level, at the bar centre or ``grasp_backoff`` further out, each also turned half a turn about the
+approach axis because either finger may come from above); base placement takes the first that works.
 """
 
 from __future__ import annotations
@@ -188,15 +189,21 @@ def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: Plan
                                   f"the joint opens (it lies on the hinge axis)")
     n = v / np.linalg.norm(v)
     axis_world = None if axis is None else T_world_moving[:3, :3] @ axis
-    frames = _grasp_frames(p_world, n, axis_world, task.kind, cfg.grasp_tilt)
+    frames = _grasp_frames(p_world, n, axis_world, task.kind, cfg.grasp_tilt, cfg.grasp_backoff)
     T_link = tuple(np.linalg.solve(T_world_moving, T) for T in frames)
     geoms = frozenset((ln, g.index) for ln, g, _ in cands)
     log.debug("%s: handle via %s at %s, outward %s", where, source, p_world.round(3), n.round(3))
     return HandleGrasp(moving, grasp_link, geoms, T_link, width, source)
 
 
-def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kind: str, tilt: float) -> list:
-    """Two ``(4, 4)`` world grasp frames at ``p`` approaching along ``-n`` with x along the bar."""
+def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kind: str, tilt: float,
+                  backoff: float) -> list:
+    """Candidate ``(4, 4)`` world grasp frames at ``p`` approaching along ``-n`` with x along the bar.
+
+    In order of preference: tilted (horizontal bars only) then level; at the bar centre, then held
+    ``backoff`` metres further out (a short knob close to the part's face leaves no room for the fingertips);
+    each also turned half a turn about the approach axis.
+    """
     z = -n
     ez = np.array([0.0, 0.0, 1.0])
     x = None
@@ -209,16 +216,19 @@ def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kin
         if np.linalg.norm(x) < 1e-6:
             x = np.cross(np.array([1.0, 0.0, 0.0]), z)
     x = x / np.linalg.norm(x)
-    R = np.column_stack([x, np.cross(z, x), z])
+    R0 = np.column_stack([x, np.cross(z, x), z])
+    rotations = [R0]
     if abs(x @ ez) < 0.5 and tilt > 0:   # horizontal bar: tilt the approach downward about the bar
         Rt = _rotation_about(x, tilt)
         if (Rt @ z) @ ez > z @ ez:
             Rt = _rotation_about(x, -tilt)
-        R = Rt @ R
+        rotations = [Rt @ R0, R0]
     out = []
-    for flip in (False, True):
-        T = np.eye(4)
-        T[:3, :3] = R @ np.diag([-1.0, -1.0, 1.0]) if flip else R
-        T[:3, 3] = p
-        out.append(T)
+    for depth in (0.0, backoff):
+        for R in rotations:
+            for flip in (False, True):
+                T = np.eye(4)
+                T[:3, :3] = R @ np.diag([-1.0, -1.0, 1.0]) if flip else R
+                T[:3, 3] = p - depth * R[:, 2]
+                out.append(T)
     return out

@@ -24,8 +24,10 @@ def test_drawer_handle_link_found_and_grasp_frame_faces_the_front(fixture_urdf):
     h = find_handle(s, OpenTask("drawer", DRAWER), {}, CFG)
     assert h.source == "handle link" and h.grasp_link == "cabinet1_handle13"
     assert ("cabinet1_handle13", 0) in h.handle_geoms
-    for T in _world_frames(s, h):
-        # Bar centre: cabinet at x = 1.5 facing -x, handle 0.285 in front of the body origin, 0.615 high.
+    frames = _world_frames(s, h)
+    assert len(frames) == 8   # (tilted, level) x (centre, backed off) x (two finger orders)
+    for T in frames[:2]:
+        # Preferred candidates: bar centre: cabinet at x = 1.5 facing -x, handle 0.285 in front of the body origin, 0.615 high.
         assert np.allclose(T[:3, 3], [1.5 - 0.285, 0.0, 0.615], atol=1e-6)
         # Approach into the front (+x world), tilted 20 deg downward about the horizontal bar.
         assert np.degrees(np.arccos(T[:3, 2] @ [1, 0, 0])) == pytest.approx(20.0, abs=1e-6)
@@ -33,6 +35,9 @@ def test_drawer_handle_link_found_and_grasp_frame_faces_the_front(fixture_urdf):
         assert abs(T[:3, 0] @ [0, 1, 0]) == pytest.approx(1.0)   # x along the bar (world y)
         assert np.allclose(T[:3, :3].T @ T[:3, :3], np.eye(3), atol=1e-12)
     assert h.bar_width == pytest.approx(0.02)
+    level, backed = frames[2], frames[4]
+    assert np.allclose(level[:3, 2], [1, 0, 0], atol=1e-6)   # the fixture yaw is written to 1e-6
+    assert np.allclose(backed[:3, 3], frames[0][:3, 3] - 0.015 * frames[0][:3, 2], atol=1e-12)
 
 
 def test_door_handle_is_vertical_and_approached_against_the_swing(fixture_urdf):
