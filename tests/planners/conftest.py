@@ -128,5 +128,22 @@ def variants(tmp_path):
     return SimpleNamespace(no_handle=lambda: without_drawer_handle(tmp_path),
                            named_geometry=lambda: drawer_handle_as_named_geometry(tmp_path),
                            walled=lambda x=1.02: with_wall(tmp_path, x),
+                           knob=lambda: knob_close_to_the_face(tmp_path),
                            write=lambda name, text: write(tmp_path, name, text),
                            text=FIXTURE.read_text())
+
+
+def knob_close_to_the_face(tmp: Path) -> Path:
+    """The drawer handle replaced by a short knob (r 16 mm, 36 mm long, lying along the face) 21 mm proud of
+    the drawer front, as recon reconstructs small knobs."""
+    t = FIXTURE.read_text()
+    knob = ('<link name="cabinet1_handle13">\n    <inertial><origin xyz="0 0 0"/><mass value="0.02"/>'
+            '<inertia ixx="1e-6" ixy="0" ixz="0" iyy="1e-6" iyz="0" izz="1e-6"/></inertial>\n'
+            '    <collision><origin xyz="0 0 0" rpy="1.5707963 0 0"/><geometry><cylinder radius="0.016" '
+            'length="0.036"/></geometry></collision>\n  </link>')
+    t = re.sub(r'<link name="cabinet1_handle13">.*?</link>', knob, t, count=1, flags=re.S)
+    t = t.replace('<origin xyz="0.285 0 0.615" rpy="0 0 0.000000"/>', '<origin xyz="0.271 0 0.615" rpy="0 0 0"/>')
+    assert '0.271 0 0.615' in t
+    out = tmp / "knob.urdf"
+    out.write_text(t)
+    return out

@@ -172,3 +172,12 @@ def test_plan_from_a_carried_scene_state(robot, fixture_urdf):
     op = plan.segment("open")
     assert op.object_q[0] == pytest.approx(0.1) and op.object_q[-1] == pytest.approx(0.35)
     assert np.all(plan.segment("approach").object_q == pytest.approx(0.1))
+
+
+def test_short_knob_close_to_the_face_as_recon_builds_it(robot, variants, pb_contacts):
+    urdf = variants.knob()
+    plan = plan_open_task(robot, urdf, OpenTask("drawer", DRAWER), seed=0)
+    assert plan.ok, plan.reason
+    # The grasp is on the knob (centre 0.271 m out in the drawer frame, or backed off further out).
+    assert 0.27 < plan.T_link_grasp[0, 3] < 0.30
+    assert pb_contacts(robot, urdf, plan, {"cabinet1_handle13"}) == []
