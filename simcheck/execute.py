@@ -73,8 +73,7 @@ def timed_waypoints(q: np.ndarray, vmax: np.ndarray, min_dt: float) -> np.ndarra
 class _Recorder:
     """Accumulates samples; contacts are aggregated (max force/depth per pair) between samples."""
 
-    def __init__(self, world: World, joint: str, moving: str, handle: str, planned: PlannedTask,
-                 config: PhysicsConfig) -> None:
+    def __init__(self, world: World, joint: str, moving: str, handle: str, config: PhysicsConfig) -> None:
         self.world, self.joint, self.moving, self.handle, self.config = world, joint, moving, handle, config
         self.rows = defaultdict(list)
         self.contacts: dict = {}
@@ -171,7 +170,7 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
     joint = task.joint
     moving = moving_link_for(world, joint)
     handle = handle_link_for(world, joint, task.grasp_link)
-    rec = _Recorder(world, joint, moving, handle, task, config)
+    rec = _Recorder(world, joint, moving, handle, config)
     rec.sample_callback = sample_callback
     q0_obj = world.scene_joint_state(joint)[0]
     vmax_urdf = world.robot_max_velocity()
