@@ -6,6 +6,8 @@ import base64
 import io
 
 import matplotlib
+import numpy as np
+from PIL import Image
 
 matplotlib.use("Agg")  # headless: never open a window
 import matplotlib.pyplot as plt  # noqa: E402
@@ -36,12 +38,26 @@ def new_figure(width_in: float, height_in: float) -> Figure:
     return fig
 
 
+#: White margin (pixels) kept around a figure's content after trimming.
+TRIM_PAD_PX = 10
+
+
 def png_from_figure(fig: Figure, dpi: int = 90) -> bytes:
-    """PNG bytes of ``fig`` (white background, tight bounding box)."""
+    """PNG bytes of ``fig``: white background, white margins trimmed to :data:`TRIM_PAD_PX` (3-D axes
+    leave wide empty borders around the drawn box)."""
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight", facecolor="white")
     plt.close(fig)
-    return buf.getvalue()
+    rgb = np.asarray(Image.open(io.BytesIO(buf.getvalue())).convert("RGB"))
+    ink = np.flatnonzero(np.any(rgb < 250, axis=(1, 2))), np.flatnonzero(np.any(rgb < 250, axis=(0, 2)))
+    if len(ink[0]) == 0:
+        return buf.getvalue()
+    (r0, r1), (c0, c1) = (ink[0][0], ink[0][-1]), (ink[1][0], ink[1][-1])
+    r0, c0 = max(r0 - TRIM_PAD_PX, 0), max(c0 - TRIM_PAD_PX, 0)
+    r1, c1 = min(r1 + TRIM_PAD_PX + 1, rgb.shape[0]), min(c1 + TRIM_PAD_PX + 1, rgb.shape[1])
+    out = io.BytesIO()
+    Image.fromarray(rgb[r0:r1, c0:c1]).save(out, format="PNG", optimize=True)
+    return out.getvalue()
 
 
 def data_uri_from_png(png: bytes) -> str:

@@ -21,7 +21,7 @@ from ._layout import DemoLayout
 from ._part_tree_image import png_of_part_trees, trees_from_scene_json
 from ._primitives import solids_from_truth, solids_from_urdf
 from ._scan_image import load_scan, png_of_scan
-from ._scene_image import png_of_scenes
+from ._scene_image import png_of_scenes, view_azimuth
 from ._tables import criteria_table, key_value_table, metrics_table, pipeline_table
 from ._tasks import executed_urdf, task_figures
 
@@ -47,11 +47,11 @@ def _missing(what: str, path: Path) -> str:
     return note(f"Not available: {what} ({path.name} was not found in {path.parent}).")
 
 
-def _scan_section(lay: DemoLayout) -> str:
+def _scan_section(lay: DemoLayout, azim: float) -> str:
     if not lay.scan_npz.exists() or not lay.labels_json.exists():
         return _missing("the scan", lay.scan_npz if not lay.scan_npz.exists() else lay.labels_json)
     scan = load_scan(lay.scan_npz, lay.labels_json)
-    return img(png_of_scan(scan), "The virtual scan: each part in its own colour (left) and by label (right).",
+    return img(png_of_scan(scan, azim_deg=azim), "The virtual scan: each part in its own colour (left) and by label (right).",
                "scan")
 
 
@@ -63,7 +63,7 @@ def _scene_section(lay: DemoLayout, truth: dict | None) -> str:
         panels.append(("truth (truth.json)", solids_from_truth(truth, str(lay.truth_json))))
     if not panels:
         return _missing("the reconstruction and the truth", lay.scene_urdf)
-    body = img(png_of_scenes(panels), "Primitive parts of the reconstruction beside the ground truth, "
+    body = img(png_of_scenes(panels, azim_deg=view_azimuth(truth)), "Primitive parts of the reconstruction beside the ground truth, "
                "coloured by part label, in the state the scan saw.", "scene")
     if not lay.scene_urdf.exists():
         body = _missing("the reconstruction", lay.scene_urdf) + body
@@ -164,7 +164,7 @@ def render_report(demo_dir: str | os.PathLike, out_html: str | os.PathLike | Non
     if demo is not None:
         sections.append(("pipeline", "Pipeline", pipeline_table(demo.get("stages", []))))
     sections += [
-        ("scan", "1. The scan, coloured by part", _scan_section(lay)),
+        ("scan", "1. The scan, coloured by part", _scan_section(lay, view_azimuth(truth))),
         ("scene", "2. Reconstruction beside truth", _scene_section(lay, truth)),
         ("trees", "3. Part trees and joints", _tree_section(lay, graph, truth)),
         ("metrics", "4. Reconstruction metrics",

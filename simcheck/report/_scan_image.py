@@ -11,7 +11,7 @@ from matplotlib.lines import Line2D
 
 from ._errors import ArtifactError
 from ._figure import colour_of_label, new_figure, png_from_figure
-from ._scene_image import set_view
+from ._scene_image import VIEW_AZIM_DEG, set_view
 
 __all__ = ["ScanPoints", "load_scan", "png_of_scan", "MAX_DRAWN_POINTS"]
 
@@ -64,7 +64,7 @@ def view_bounds(points: np.ndarray, part_id: np.ndarray) -> np.ndarray:
     return np.stack([labelled.min(axis=0) - VIEW_MARGIN, labelled.max(axis=0) + VIEW_MARGIN])
 
 
-def png_of_scan(scan: ScanPoints, seed: int = 0, panel_in: float = 5.5) -> bytes:
+def png_of_scan(scan: ScanPoints, seed: int = 0, panel_in: float = 5.5, azim_deg: float = VIEW_AZIM_DEG) -> bytes:
     """Two panels: every part in its own colour, and points coloured by their part's label."""
     rng = np.random.default_rng(seed)
     n = len(scan.points)
@@ -97,7 +97,7 @@ def png_of_scan(scan: ScanPoints, seed: int = 0, panel_in: float = 5.5) -> bytes
                    linewidths=0, depthshade=False)
         ax.scatter(pts[~bg, 0], pts[~bg, 1], pts[~bg, 2], c=colours[~bg], s=1.2, marker=".", linewidths=0,
                    depthshade=False)
-        set_view(ax, bounds)
+        set_view(ax, bounds, azim_deg)
         ax.set_title(title, fontsize=11)
     handles = [Line2D([], [], marker="o", linestyle="", color=colour_of_label(lb), label=lb or "(none)")
                for lb in sorted(labels_seen)]

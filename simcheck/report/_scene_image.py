@@ -18,7 +18,8 @@ _LIGHT = np.array([0.4, -0.5, 0.9]) / np.linalg.norm([0.4, -0.5, 0.9])
 VIEW_ELEV_DEG, VIEW_AZIM_DEG = 28.0, -60.0
 
 
-def draw_solids(ax, solids: Sequence[Solid], bounds: np.ndarray | None = None) -> None:
+def draw_solids(ax, solids: Sequence[Solid], bounds: np.ndarray | None = None,
+                azim_deg: float = VIEW_AZIM_DEG) -> None:
     """Draw ``solids`` as shaded triangles on a 3-D axes; ``bounds`` (2, 3) fixes the view box."""
     polys, colours = [], []
     for solid in solids:
@@ -32,14 +33,14 @@ def draw_solids(ax, solids: Sequence[Solid], bounds: np.ndarray | None = None) -
         # edges in the face colour hide the hairline seams antialiasing leaves between facets
         coll = Poly3DCollection(polys, facecolors=rgb, edgecolors=rgb, linewidths=0.3)
         ax.add_collection3d(coll)
-    set_view(ax, scene_bounds(solids) if bounds is None else bounds)
+    set_view(ax, scene_bounds(solids) if bounds is None else bounds, azim_deg)
 
 
 #: Zoom of the 3-D axes box (matplotlib leaves wide margins around it at 1.0).
 VIEW_ZOOM = 1.0
 
 
-def set_view(ax, bounds: np.ndarray) -> None:
+def set_view(ax, bounds: np.ndarray, azim_deg: float = VIEW_AZIM_DEG) -> None:
     """Equal-scale 3-D view of the world box ``bounds`` (2, 3) metres (z from the floor up), no axes."""
     lo, hi = np.array(bounds[0], dtype=float), np.array(bounds[1], dtype=float)
     lo[2] = min(lo[2], 0.0)
@@ -48,7 +49,7 @@ def set_view(ax, bounds: np.ndarray) -> None:
     ax.set_ylim(lo[1], hi[1])
     ax.set_zlim(lo[2], hi[2])
     ax.set_box_aspect(tuple(hi - lo), zoom=VIEW_ZOOM)
-    ax.view_init(elev=VIEW_ELEV_DEG, azim=VIEW_AZIM_DEG)
+    ax.view_init(elev=VIEW_ELEV_DEG, azim=azim_deg)
     ax.set_axis_off()
 
 
@@ -82,7 +83,32 @@ def scene_bounds(solids: Sequence[Solid]) -> np.ndarray:
     return np.stack([pts.min(axis=0), pts.max(axis=0)])
 
 
-def png_of_scenes(panels: Sequence[tuple[str, Sequence[Solid]]], panel_in: float = 5.0) -> bytes:
+def view_azimuth(truth: dict | None) -> float:
+    """Camera azimuth (deg) facing the fronts of the objects that stand on the floor: the direction of
+    the sum of their front normals (x axes of ``T_world_object`` in truth.json), each weighted by its
+    number of drawers and doors, turned :data:`SIDE_TURN_DEG` to show depth. Objects against opposite
+    walls cannot both be seen from the front: the one with more drawers and doors wins."""
+    if not truth:
+        return VIEW_AZIM_DEG
+    total = np.zeros(2)
+    for o in truth.get("objects", []):
+        if o.get("category") not in _FRONT_CATEGORIES or "T_world_object" not in o or o.get("supported_by") is not None:
+            continue
+        movable = sum(1 for j in o.get("joints", []) if j.get("type") in ("prismatic", "revolute"))
+        total += (1 + movable) * np.asarray(o["T_world_object"], dtype=float)[:2, 0]
+    if np.linalg.norm(total) < 1e-6:
+        return VIEW_AZIM_DEG
+    return float(np.degrees(np.arctan2(total[1], total[0]))) + SIDE_TURN_DEG
+
+
+#: Objects whose front (drawers, doors) the views should face.
+_FRONT_CATEGORIES = ("cabinet", "microwave", "refrigerator")
+#: Turn of the view away from straight-on, degrees.
+SIDE_TURN_DEG = -30.0
+
+
+def png_of_scenes(panels: Sequence[tuple[str, Sequence[Solid]]], panel_in: float = 5.0,
+                  azim_deg: float = VIEW_AZIM_DEG) -> bytes:
     """One PNG with a 3-D panel per ``(title, solids)``, all drawn in the same view box."""
     all_solids = [s for _, solids in panels for s in solids]
     bounds = scene_bounds(all_solids)
@@ -90,6 +116,6 @@ def png_of_scenes(panels: Sequence[tuple[str, Sequence[Solid]]], panel_in: float
     fig.subplots_adjust(left=0, right=1, bottom=0, top=0.93, wspace=0.02)
     for i, (title, solids) in enumerate(panels):
         ax = fig.add_subplot(1, len(panels), i + 1, projection="3d")
-        draw_solids(ax, solids, bounds)
+        draw_solids(ax, solids, bounds, azim_deg)
         ax.set_title(f"{title} ({len(solids)} primitives)", fontsize=11)
     return png_from_figure(fig)

@@ -14,7 +14,7 @@ from ._figure import new_figure, png_from_figure
 from ._layout import DemoLayout
 from ._primitives import solids_from_urdf
 from ._scan_image import load_scan, view_bounds
-from ._scene_image import draw_solids, set_view
+from ._scene_image import draw_solids, set_view, view_azimuth
 from ._tasks import executed_urdf, key_frames_for, load_rollout, rollout_path
 
 __all__ = ["png_of_teaser"]
@@ -48,6 +48,7 @@ def png_of_teaser(demo_dir: str | Path, seed: int = 0) -> bytes:
     if not lay.scene_urdf.exists():
         raise ArtifactError(f"{lay.scene_urdf}: the teaser needs the reconstruction")
     scan = load_scan(lay.scan_npz, lay.labels_json)
+    azim = view_azimuth(json.loads(lay.truth_json.read_text()) if lay.truth_json.exists() else None)
     solids = solids_from_urdf(lay.scene_urdf)
     frame = _key_frame(lay)
     n = 3 if frame else 2
@@ -64,10 +65,10 @@ def png_of_teaser(demo_dir: str | Path, seed: int = 0) -> bytes:
     colours = np.array([cmap(order[p] % 20)[:3] for p in pid]).reshape(-1, 3)
     ax = fig.add_subplot(1, n, 1, projection="3d")
     ax.scatter(pts[:, 0], pts[:, 1], pts[:, 2], c=colours, s=1.0, marker=".", linewidths=0, depthshade=False)
-    set_view(ax, bounds)
+    set_view(ax, bounds, azim)
     ax.set_title("1. labelled scan", fontsize=11)
     ax = fig.add_subplot(1, n, 2, projection="3d")
-    draw_solids(ax, solids, bounds)
+    draw_solids(ax, solids, bounds, azim)
     ax.set_title("2. part-level reconstruction (URDF)", fontsize=11)
     if frame:
         ax = fig.add_subplot(1, n, 3)
