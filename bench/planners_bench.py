@@ -1,6 +1,9 @@
 """Planning benchmark: success over the drawers and doors of generated scenes, planning times, checks/s.
 
     python -m bench.planners_bench [--scenes kitchen:0-7,office:0-1] [--seed 0] [--out DIR] [--quick]
+                                   [--open-method auto|ik_tracking|constrained] [--recon]
+
+``--recon``: plan on recon's reconstruction (scan -> scene.urdf) of each scene instead of its truth.
 
 Prints three tables: (1) outcome per status and the tally of failure reasons, per kind (drawer/door);
 (2) planning times (median, p90) of the stand search, the OMPL approach, the opening and the whole plan;
@@ -32,13 +35,18 @@ def _scene_list(spec: str) -> list[tuple[str, int]]:
     return out
 
 
-def _tasks(truth_json: Path) -> list[tuple[str, str, str]]:
+def _tasks(truth_json: Path, scene_urdf: Path) -> list[tuple[str, str, str]]:
+    """(kind, joint, category) of every movable joint of ``scene_urdf`` (kind from its type there; category
+    from the truth)."""
+    from planners.scene_urdf import read_scene_urdf
+
     truth = json.loads(truth_json.read_text())
+    category = {o["name"]: o["category"] for o in truth["objects"]}
     tasks = []
-    for o in truth["objects"]:
-        for j in o["joints"]:
-            if j["type"] in ("prismatic", "revolute"):
-                tasks.append(("drawer" if j["type"] == "prismatic" else "door", j["name"], o["category"]))
+    for j in read_scene_urdf(scene_urdf).joints.values():
+        if j.type in ("prismatic", "revolute"):
+            cat = next((c for name, c in category.items() if j.name.startswith(name + "_")), "?")
+            tasks.append(("drawer" if j.type == "prismatic" else "door", j.name, cat))
     return tasks
 
 
@@ -83,6 +91,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--seed", type=int, default=0, help="planning seed")
     ap.add_argument("--out", type=Path, default=None, help="keep generated scenes here")
     ap.add_argument("--quick", action="store_true", help="kitchen:0-1 only")
+    ap.add_argument("--recon", action="store_true", help="plan on recon's reconstruction of each scene")
     ap.add_argument("--open-method", default=None, choices=("auto", "ik_tracking", "constrained"),
                     help="PlannerConfig.open_method (default: the config's default)")
     args = ap.parse_args(argv)
@@ -102,13 +111,19 @@ def main(argv: list[str] | None = None) -> int:
     try:
         for name, sseed in _scene_list(spec):
             out = root / f"{name}_{sseed}"
-            if not (out / "truth.urdf").exists():
-                scenes.make_scene(name, seed=sseed, out=out, scan=False, previews=False)
-            for kind, joint, category in _tasks(out / "truth.json"):
-                first_scene = first_scene or (out / "truth.urdf", joint)
+            if not (out / "truth.urdf").exists() or (args.recon and not (out / "scan.ply").exists()):
+                scenes.make_scene(name, seed=sseed, out=out, scan=args.recon, previews=False)
+            urdf = out / "truth.urdf"
+            if args.recon:
+                urdf = out / "recon" / "scene.urdf"
+                if not urdf.exists():
+                    from recon import reconstruct
+                    reconstruct(out / "scan.ply", out / "labels.json", seed=sseed).write(out / "recon")
+            for kind, joint, category in _tasks(out / "truth.json", urdf):
+                first_scene = first_scene or (urdf, joint)
                 t = time.perf_counter()
                 try:
-                    plan = plan_open_task(robot, out / "truth.urdf", OpenTask(kind, joint), seed=args.seed,
+                    plan = plan_open_task(robot, urdf, OpenTask(kind, joint), seed=args.seed,
                                           config=cfg)
                     status, reason = plan.status.name, plan.reason
                     timings, checks = dict(plan.timings), plan.collision_checks
@@ -125,7 +140,8 @@ def main(argv: list[str] | None = None) -> int:
             print("no drawers or doors in the chosen scenes")
             return 1
 
-        print(f"\nTable 1. Planning outcome on {len(rows)} drawers/doors of {spec} (truth scenes, seed {args.seed}, "
+        which = "reconstructions" if args.recon else "truth scenes"
+        print(f"\nTable 1. Planning outcome on {len(rows)} drawers/doors of {spec} ({which}, seed {args.seed}, "
               f"open_method {cfg.open_method})")
         print(f"{'kind':<8}{'tasks':>7}{'OK':>7}{'share':>9}")
         for kind in ("drawer", "door", "all"):

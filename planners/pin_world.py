@@ -194,10 +194,13 @@ class PlanningWorld:
         self.grasp_pairs = [k for k, cp in enumerate(self.geom.collisionPairs)
                             if (cp.first in grip and cp.second in handle) or (cp.second in grip and cp.first in handle)]
         self.handle_geom_ids = sorted(handle)
+        self.arm_scene_pairs = []   # (non-gripper robot link, scene geometry) pairs: clearance queries
         for k, cp in enumerate(self.geom.collisionPairs):
             a, b = sorted((cp.first, cp.second))
             if a < nr and b >= nr and a not in grip:
                 self.gdata.collisionRequests[k].security_margin = float(clearance)
+                if b != fi:
+                    self.arm_scene_pairs.append(k)
         self._allow = False
         self.manager = pin.BroadPhaseManager_DynamicAABBTreeCollisionManager(self.model, self.geom, self.gdata)
         self.checks = 0
@@ -245,6 +248,17 @@ class PlanningWorld:
                 cp = self.geom.collisionPairs[k]
                 out.append((self.geom.geometryObjects[cp.first].name, self.geom.geometryObjects[cp.second].name))
         return out
+
+    def clearance(self, q: np.ndarray, s: float | None = None) -> float:
+        """Smallest distance (m) between the robot's non-gripper links and the scene (floor excluded) at
+        ``(q, s)``; negative when they penetrate. Costs one distance query per pair (~ms): for ranking."""
+        self.q[self.robot.idx_q] = q
+        self.q[self.task_idx] = self.s0 if s is None else float(s)
+        pin.updateGeometryPlacements(self.model, self.data, self.geom, self.gdata, self.q)
+        best = np.inf
+        for k in self.arm_scene_pairs:
+            best = min(best, pin.computeDistance(self.geom, self.gdata, k).min_distance)
+        return float(best)
 
     def within_limits(self, q: np.ndarray) -> bool:
         return bool(np.all(q >= self.robot.lower - 1e-9) and np.all(q <= self.robot.upper + 1e-9))

@@ -5,14 +5,15 @@ with a lateral offset and the base turned roughly toward the handle. A pose is k
 reaches the grasp collision-free; it is *complete* when arm-only IK (base fixed) also reaches the handle
 at ``cfg.stand_path_samples`` points spread along the whole opening path (for a door, the arc).
 Ranking: complete poses first, then the share of the path reached, then the reach margin (the smallest
-normalised distance of an arm joint to its limit along the path).
+normalised distance of an arm joint to its limit along the path) plus the clearance between the arm/base
+and the scene at the grasp (metres, capped at 0.1).
 """
 
 from __future__ import annotations
 
 import logging
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -35,6 +36,7 @@ class StandPose:
     grasp_index : which grasp candidate (index into ``HandleGrasp.T_link_grasps``).
     path_share : share of the path samples reached with the base fixed (1.0 = complete).
     reach_margin : smallest normalised arm joint-limit margin along the reached samples (0..0.5).
+    clearance : metres between the non-gripper robot links and the scene at the grasp.
     """
 
     base: np.ndarray
@@ -42,6 +44,7 @@ class StandPose:
     grasp_index: int
     path_share: float
     reach_margin: float
+    clearance: float = 0.0
 
     @property
     def T_world_base(self) -> np.ndarray:
@@ -52,7 +55,8 @@ class StandPose:
         return T
 
     def rank_key(self) -> tuple:
-        return (-self.path_share, -self.reach_margin)
+        """Sort key, best first: path share, then reach margin + clearance (capped at 0.1 m)."""
+        return (-self.path_share, -(self.reach_margin + min(self.clearance, 0.1)))
 
 
 def _margin(q: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> float:
@@ -122,6 +126,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
             if cand.path_share == 1.0:
                 break
         if best is not None:
+            best = replace(best, clearance=world.clearance(best.q_grasp, s_samples[0]))
             kept.append(best)
             n_complete += best.path_share == 1.0
             if n_complete >= cfg.stand_keep:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 import pybullet as pb
 
 from planners import OpenTask, PlannerConfig
@@ -90,3 +91,4 @@ def test_clearance_keeps_the_base_away_from_the_scene(robot, fixture_urdf):
     assert not _world(robot, fixture_urdf)[1].in_collision(q)
     assert _world(robot, fixture_urdf, clearance=0.01)[1].in_collision(q)
     assert not _world(robot, fixture_urdf, clearance=0.004)[1].in_collision(q)
+    assert _world(robot, fixture_urdf)[1].clearance(q) == pytest.approx(0.005, abs=1e-4)
