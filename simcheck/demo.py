@@ -349,9 +349,16 @@ def _task_lines(lay: DemoLayout) -> list[str]:
     doc = json.loads(lay.certificate_json.read_text())
     lines = []
     for t in doc.get("tasks", []):
+        reason = str(t.get("reason", ""))
+        if len(reason) > _REASON_CHARS:
+            reason = reason[:_REASON_CHARS - 3] + "..."
         lines.append(f"  {t.get('status', '?'):<12} {t.get('kind', t.get('task', ''))}:{t.get('joint', '?')}"
-                     f"  {t.get('reason', '')}")
+                     f"  {reason}")
     return lines
+
+
+#: A task's reason is cut to this many characters on stdout (report.html and certificate.json have it all).
+_REASON_CHARS = 160
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -380,12 +387,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     result = run_demo(args.out, cfg)
     lay = DemoLayout(Path(args.out))
     total = sum(s.seconds for s in result.stages)
-    print(f"partscene demo: {total:.0f} s; report: {lay.report_html.resolve()}")
+    tasks = _task_lines(lay)
+    print(f"partscene demo: {cfg.scene} seed {cfg.seed}, {total:.0f} s, {len(tasks)} tasks:")
+    for line in tasks:
+        print(line)
     for s in result.stages:
         if s.status is not StageStatus.OK:
             print(f"  stage {s.name}: {s.status.value}: {s.message}")
-    for line in _task_lines(lay):
-        print(line)
+    print(f"report: {lay.report_html.resolve()}")
     return 0 if result.complete else 1
 
 
