@@ -19,7 +19,7 @@ from shapely.ops import unary_union
 from .model import ArticulatedObject
 from .poses import transform_points
 
-__all__ = ["footprint", "sweep", "clearance", "handle_reach", "keepout", "subtree_parts"]
+__all__ = ["footprint", "sweep", "clearance", "handle_reach", "keepout", "subtree_parts", "room_polygon"]
 
 _SWEEP_SAMPLES = 9
 
