@@ -13,7 +13,7 @@ matplotlib.use("Agg")  # headless: never open a window
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
-__all__ = ["new_figure", "png_from_figure", "data_uri_from_png", "LABEL_COLOURS", "colour_of_label"]
+__all__ = ["new_figure", "png_from_figure", "data_uri_from_png", "hconcat_pngs", "LABEL_COLOURS", "colour_of_label"]
 
 #: Face colour (RGB in [0, 1]) of a part by its semantic label; anything else gets ``_OTHER``.
 LABEL_COLOURS: dict[str, tuple[float, float, float]] = {
@@ -63,3 +63,20 @@ def png_from_figure(fig: Figure, dpi: int = 90) -> bytes:
 def data_uri_from_png(png: bytes) -> str:
     """``data:image/png;base64,...`` for an ``<img src>``."""
     return "data:image/png;base64," + base64.b64encode(png).decode("ascii")
+
+
+def hconcat_pngs(pngs: list[bytes], height_px: int, gap_px: int = 16) -> bytes:
+    """The PNGs side by side on white, each scaled to ``height_px`` pixels high."""
+    images = []
+    for png in pngs:
+        im = Image.open(io.BytesIO(png)).convert("RGB")
+        images.append(im.resize((max(1, round(im.width * height_px / im.height)), height_px), Image.LANCZOS))
+    width = sum(im.width for im in images) + gap_px * (len(images) - 1)
+    canvas = Image.new("RGB", (max(width, 1), height_px), "white")
+    x = 0
+    for im in images:
+        canvas.paste(im, (x, 0))
+        x += im.width + gap_px
+    out = io.BytesIO()
+    canvas.save(out, format="PNG", optimize=True)
+    return out.getvalue()

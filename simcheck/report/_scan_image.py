@@ -10,7 +10,7 @@ from matplotlib import colormaps
 from matplotlib.lines import Line2D
 
 from ._errors import ArtifactError
-from ._figure import colour_of_label, new_figure, png_from_figure
+from ._figure import colour_of_label, hconcat_pngs, new_figure, png_from_figure
 from ._scene_image import VIEW_AZIM_DEG, set_view
 
 __all__ = ["ScanPoints", "load_scan", "png_of_scan", "MAX_DRAWN_POINTS"]
@@ -64,8 +64,10 @@ def view_bounds(points: np.ndarray, part_id: np.ndarray) -> np.ndarray:
     return np.stack([labelled.min(axis=0) - VIEW_MARGIN, labelled.max(axis=0) + VIEW_MARGIN])
 
 
-def png_of_scan(scan: ScanPoints, seed: int = 0, panel_in: float = 5.5, azim_deg: float = VIEW_AZIM_DEG) -> bytes:
-    """Two panels: every part in its own colour, and points coloured by their part's label."""
+def png_of_scan(scan: ScanPoints, seed: int = 0, panel_in: float = 5.5, azim_deg: float = VIEW_AZIM_DEG,
+                height_px: int = 380) -> bytes:
+    """Two panels: every part in its own colour, and points coloured by their part's label (with a
+    legend), each trimmed to its content and scaled to ``height_px``."""
     rng = np.random.default_rng(seed)
     n = len(scan.points)
     keep = np.sort(rng.choice(n, MAX_DRAWN_POINTS, replace=False)) if n > MAX_DRAWN_POINTS else np.arange(n)
@@ -84,14 +86,16 @@ def png_of_scan(scan: ScanPoints, seed: int = 0, panel_in: float = 5.5, azim_deg
         if label not in labels_seen:
             labels_seen.append(label)
 
-    fig = new_figure(2 * panel_in, 0.8 * panel_in)
-    fig.subplots_adjust(left=0, right=1, bottom=0, top=0.93, wspace=0.02)
     bounds = view_bounds(scan.points, scan.part_id)
     inside = np.all((pts >= bounds[0]) & (pts <= bounds[1]), axis=1)
     pts, by_part, by_label, pid_in = pts[inside], by_part[inside], by_label[inside], pid[inside]
-    for i, (title, colours) in enumerate([(f"scan by part ({len(parts)} parts, {n} points)", by_part),
-                                          ("scan by part label", by_label)]):
-        ax = fig.add_subplot(1, 2, i + 1, projection="3d")
+    handles = [Line2D([], [], marker="o", linestyle="", color=colour_of_label(lb), label=lb or "(none)")
+               for lb in sorted(labels_seen)]
+    pngs = []
+    for title, colours, legend in [(f"scan by part ({len(parts)} parts, {n} points)", by_part, False),
+                                   ("scan by part label", by_label, True)]:
+        fig = new_figure(panel_in, panel_in)
+        ax = fig.add_subplot(1, 1, 1, projection="3d")
         bg = pid_in < 0  # unlabelled points: faint context
         ax.scatter(pts[bg, 0], pts[bg, 1], pts[bg, 2], c=[_BACKGROUND], s=0.3, alpha=0.3, marker=".",
                    linewidths=0, depthshade=False)
@@ -99,8 +103,7 @@ def png_of_scan(scan: ScanPoints, seed: int = 0, panel_in: float = 5.5, azim_deg
                    depthshade=False)
         set_view(ax, bounds, azim_deg)
         ax.set_title(title, fontsize=11)
-    handles = [Line2D([], [], marker="o", linestyle="", color=colour_of_label(lb), label=lb or "(none)")
-               for lb in sorted(labels_seen)]
-    if handles:
-        fig.legend(handles=handles, loc="lower right", fontsize=8, ncol=2, frameon=False)
-    return png_from_figure(fig)
+        if legend and handles:
+            ax.legend(handles=handles, loc="upper right", fontsize=8, ncol=2, frameon=False)
+        pngs.append(png_from_figure(fig, dpi=110))
+    return hconcat_pngs(pngs, height_px)

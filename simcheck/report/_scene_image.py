@@ -7,7 +7,7 @@ from collections.abc import Sequence
 import numpy as np
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-from ._figure import colour_of_label, new_figure, png_from_figure
+from ._figure import colour_of_label, hconcat_pngs, new_figure, png_from_figure
 from ._primitives import Solid, mesh_from_solid
 
 __all__ = ["png_of_scenes", "draw_solids"]
@@ -108,14 +108,16 @@ SIDE_TURN_DEG = -30.0
 
 
 def png_of_scenes(panels: Sequence[tuple[str, Sequence[Solid]]], panel_in: float = 5.0,
-                  azim_deg: float = VIEW_AZIM_DEG) -> bytes:
-    """One PNG with a 3-D panel per ``(title, solids)``, all drawn in the same view box."""
+                  azim_deg: float = VIEW_AZIM_DEG, height_px: int = 380) -> bytes:
+    """One PNG with a 3-D panel per ``(title, solids)``, all drawn in the same view box, each panel
+    trimmed to its content and scaled to ``height_px``."""
     all_solids = [s for _, solids in panels for s in solids]
     bounds = scene_bounds(all_solids)
-    fig = new_figure(panel_in * len(panels), 0.8 * panel_in)
-    fig.subplots_adjust(left=0, right=1, bottom=0, top=0.93, wspace=0.02)
-    for i, (title, solids) in enumerate(panels):
-        ax = fig.add_subplot(1, len(panels), i + 1, projection="3d")
+    pngs = []
+    for title, solids in panels:
+        fig = new_figure(panel_in, panel_in)
+        ax = fig.add_subplot(1, 1, 1, projection="3d")
         draw_solids(ax, solids, bounds, azim_deg)
         ax.set_title(f"{title} ({len(solids)} primitives)", fontsize=11)
-    return png_from_figure(fig)
+        pngs.append(png_from_figure(fig, dpi=110))
+    return hconcat_pngs(pngs, height_px)

@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib import colormaps
 
 from ._errors import ArtifactError
-from ._figure import new_figure, png_from_figure
+from ._figure import hconcat_pngs, new_figure, png_from_figure
 from ._layout import DemoLayout
 from ._primitives import solids_from_urdf
 from ._scan_image import load_scan, view_bounds
@@ -21,6 +21,8 @@ __all__ = ["png_of_teaser"]
 
 #: Points drawn in the scan panel (a seeded subsample).
 _TEASER_POINTS = 25_000
+#: Height of the picture, pixels.
+_TEASER_HEIGHT_PX = 300
 
 
 def _key_frame(lay: DemoLayout) -> tuple[str, np.ndarray] | None:
@@ -51,9 +53,6 @@ def png_of_teaser(demo_dir: str | Path, seed: int = 0) -> bytes:
     azim = view_azimuth(json.loads(lay.truth_json.read_text()) if lay.truth_json.exists() else None)
     solids = solids_from_urdf(lay.scene_urdf)
     frame = _key_frame(lay)
-    n = 3 if frame else 2
-    fig = new_figure(4.0 * n, 3.2)
-    fig.subplots_adjust(left=0, right=1, bottom=0, top=0.92, wspace=0.02)
     bounds = view_bounds(scan.points, scan.part_id)
     rng = np.random.default_rng(seed)
     keep = rng.choice(len(scan.points), min(_TEASER_POINTS, len(scan.points)), replace=False)
@@ -63,16 +62,23 @@ def png_of_teaser(demo_dir: str | Path, seed: int = 0) -> bytes:
     cmap = colormaps["tab20"]
     order = {p: k for k, p in enumerate(np.unique(pid))}
     colours = np.array([cmap(order[p] % 20)[:3] for p in pid]).reshape(-1, 3)
-    ax = fig.add_subplot(1, n, 1, projection="3d")
-    ax.scatter(pts[:, 0], pts[:, 1], pts[:, 2], c=colours, s=1.0, marker=".", linewidths=0, depthshade=False)
+    pngs = []
+    fig = new_figure(4.0, 4.0)
+    ax = fig.add_subplot(1, 1, 1, projection="3d")
+    ax.scatter(pts[:, 0], pts[:, 1], pts[:, 2], c=colours, s=1.5, marker=".", linewidths=0, depthshade=False)
     set_view(ax, bounds, azim)
     ax.set_title("1. labelled scan", fontsize=11)
-    ax = fig.add_subplot(1, n, 2, projection="3d")
+    pngs.append(png_from_figure(fig, dpi=100))
+    fig = new_figure(4.0, 4.0)
+    ax = fig.add_subplot(1, 1, 1, projection="3d")
     draw_solids(ax, solids, bounds, azim)
     ax.set_title("2. part-level reconstruction (URDF)", fontsize=11)
+    pngs.append(png_from_figure(fig, dpi=100))
     if frame:
-        ax = fig.add_subplot(1, n, 3)
+        fig = new_figure(4.0, 3.3)
+        ax = fig.add_subplot(1, 1, 1)
         ax.imshow(frame[1])
         ax.set_axis_off()
         ax.set_title(f"3. the robot opening it in physics ({frame[0]})", fontsize=11)
-    return png_from_figure(fig, dpi=80)
+        pngs.append(png_from_figure(fig, dpi=100))
+    return hconcat_pngs(pngs, _TEASER_HEIGHT_PX)
