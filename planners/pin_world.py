@@ -66,6 +66,25 @@ class RobotKinematics:
         self.geom_data = pin.GeometryData(self.geom_model)
         self.q_full = pin.neutral(self.model)
         self.set_fingers(spec.finger_open)
+        self.shoulder_joint = self.model.getJointId(spec.arm_joints[0])
+        self.reach = self._reach()
+
+    def _reach(self, n: int = 400) -> float:
+        """Largest tool distance (m) from the first arm joint's origin over ``n`` seeded random arm
+        configurations, plus 5%: a cheap upper bound for rejecting stand poses out of reach."""
+        rng = np.random.default_rng(0)
+        best = 0.0
+        for _ in range(n):
+            q = rng.uniform(self.lower, self.upper)
+            T = self.tool_pose(q)
+            best = max(best, float(np.linalg.norm(T[:3, 3] - self.data.oMi[self.shoulder_joint].translation)))
+        return 1.05 * best
+
+    def shoulder(self, q: np.ndarray) -> np.ndarray:
+        """``(3,)`` world position of the first arm joint's origin at ``q``."""
+        qf = self.full_q(q)
+        pin.forwardKinematics(self.model, self.data, qf)
+        return np.array(self.data.oMi[self.shoulder_joint].translation)
 
     def _joint_index(self, name: str) -> int:
         if not self.model.existJointName(name):

@@ -103,10 +103,14 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
         q_seed = spec.q_with_base(spec.home_q, xy[0], xy[1], yaw)
         if world.in_collision(q_seed, s_samples[0], True):   # base (arm at home) collides: cheap rejection
             continue
+        if np.linalg.norm(kin.shoulder(q_seed) - p0) > kin.reach:   # grasp out of the arm's reach
+            continue
         best = None
         for gi, T_path in enumerate(T_paths):
+            # Full restarts for the two preferred grasps, one for the fallbacks (they rarely decide).
             r = solve_ik(kin.tool_pose_jacobian, T_path[0], q_seed, lower, upper, arm, None,
-                         pos_tol=cfg.ik_pos_tol, rot_tol=cfg.ik_rot_tol, restarts=cfg.ik_restarts, rng=rng,
+                         pos_tol=cfg.ik_pos_tol, rot_tol=cfg.ik_rot_tol,
+                         restarts=cfg.ik_restarts if gi < 2 else 1, rng=rng,
                          accept=lambda q: not world.in_collision(q, s_samples[0], True))
             if not r.success:
                 continue
