@@ -47,7 +47,8 @@ class PlannerConfig:
         open_step_prismatic / open_step_revolute: task-joint spacing of opening waypoints;
         track_pos_tol, track_rot_tol: tool pose error allowed at any opening sample;
         open_method: "ik_tracking", "constrained" or "auto" (tracking, then constrained planning if it fails);
-        constrained_time: time limit of OMPL constrained planning of the opening (0 disables the fallback).
+        constrained_time: time limit of OMPL constrained planning of the opening (0 disables the fallback);
+        constrained_stands: in "auto", the fallback runs only from the best this-many stand poses.
     """
 
     grasp_tilt: float = math.radians(20.0)
@@ -84,3 +85,4 @@ class PlannerConfig:
     track_rot_tol: float = 2e-2
     open_method: str = "auto"
     constrained_time: float = 3.0
+    constrained_stands: int = 2

@@ -145,9 +145,9 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     weights = np.ones(robot.dof)
     weights[:3] = cfg.base_weight
     failures = []
-    for stand in stands[:cfg.stand_tries]:
+    for rank, stand in enumerate(stands[:cfg.stand_tries]):
         out = _plan_from_stand(kin, world, task, stand, T_paths[stand.grasp_index], s_path, handle, cfg, rng,
-                               arm, whole, weights, start, timings, seed)
+                               arm, whole, weights, start, timings, seed, rank < cfg.constrained_stands)
         if isinstance(out[0], PlanStatus):
             failures.append(out)
             if out[0] in (PlanStatus.START_IN_COLLISION, PlanStatus.NO_PATH):
@@ -165,7 +165,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
 
 
 def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle, cfg, rng, arm, whole, weights,
-                     start, timings, seed):
+                     start, timings, seed, constrained_fallback):
     """Segments for one stand pose, or ``(PlanStatus, reason)``."""
     spec = kin.spec
     lower, upper = world.robot.lower, world.robot.upper
@@ -196,7 +196,8 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
     if cfg.open_method in ("auto", "ik_tracking"):
         o = track_poses(kin, world, T_path, s_path, g.q[-1], arm if stand.path_share == 1.0 else whole, weights,
                         cfg, True)
-    if cfg.open_method == "constrained" or (cfg.open_method == "auto" and not o.success and cfg.constrained_time > 0):
+    if cfg.open_method == "constrained" or (cfg.open_method == "auto" and not o.success and cfg.constrained_time > 0
+                                            and constrained_fallback):
         oc = plan_opening_constrained(kin, world, handle.T_link_grasps[stand.grasp_index], s0, s1, g.q[-1], cfg,
                                       seed, rng)
         if oc.success or o is None:
