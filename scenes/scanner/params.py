@@ -38,7 +38,7 @@ class ScanParams:
     fov_deg: float = 70.0
     max_range: float = 6.0
     n_frames: int = 40
-    frames_per_object: int = 5
+    frames_per_object: int = 4
     path_inset: float = 1.0
     camera_height: tuple[float, float] = (1.2, 1.7)
     depth_noise_base: float = 0.0
