@@ -174,3 +174,31 @@ def test_every_builtin_scene_writes_a_loadable_urdf(tmp_path):
         pb.disconnect(cid)
         sc = scene_from_truth_dict(truth_dict_from_scene(build_scene(name, 1)))
         assert len(sc.objects) >= 3
+
+
+def test_every_generator_writes_loadable_urdf_for_many_seeds(tmp_path, capfd):
+    import pinocchio as pin
+    import yourdfpy
+
+    from scenes.generators import GENERATORS
+    from scenes.model import Scene
+    from scenes.poses import pose
+    from scenes.truth_urdf import write_truth_urdf
+
+    for seed in range(6):
+        rng = np.random.default_rng(seed)
+        objs, next_part = [], 1
+        for k, make in enumerate(GENERATORS.values()):
+            o = make(rng).renumbered(k + 1, next_part).placed(pose([3.0 * k, 0.0, 0.0]))
+            next_part += len(o.parts)
+            objs.append(o)
+        urdf = str(write_truth_urdf(Scene("gen", seed, tuple(objs)), tmp_path / f"gen{seed}.urdf"))
+        capfd.readouterr()
+        cid, body, links = _pybullet_body(urdf)
+        pb.disconnect(cid)
+        model = pin.buildModelFromUrdf(urdf)
+        assert yourdfpy.URDF.load(urdf).validate()
+        out, err = capfd.readouterr()
+        assert "warn" not in (out + err).lower(), out + err
+        assert len(links) == sum(len(o.parts) for o in objs)
+        assert model.nq == sum(j.movable for o in objs for j in o.joints)
