@@ -9,7 +9,8 @@ are within ``completion_reach``.
 
 Handles and knobs lose their thin stems the same way (a knob's stem is a few points at most), so a
 mounted part is extended backwards, along its axis nearest the plane's normal, onto the face of a
-drawer/door (else any part) that it stands in front of, when that face is within ``completion_reach``.
+drawer/door (else any part) that it stands in front of, when that face is within ``completion_reach``
+(a bar handle lying along the face becomes the box enveloping it and its hidden posts).
 Nothing else is changed.
 """
 
@@ -69,8 +70,8 @@ def complete_mounted_parts(prims: dict[int, Primitive], labels: dict[int, str],
         n, gap = best[1], best[2]
         k = int(np.argmax(np.abs(prim.T_world_part[:3, :3].T @ n)))
         if prim.kind is PrimitiveKind.CYLINDER and k != 2:
-            # a cylinder lying along the face (a bar): grow its radius side is not possible; skip
-            continue
+            # a bar lying along the face on hidden posts: its envelope down to the face is a box
+            prim = Primitive(PrimitiveKind.BOX, prim.size, prim.T_world_part)
         out[i] = _extended(prim, k, -n, gap)
         changes[i] = gap
     return out, changes

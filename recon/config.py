@@ -69,7 +69,7 @@ class ReconConfig:
     candidates: tuple[str, ...] = ("box", "cylinder_x", "cylinder_y", "cylinder_z", "sphere")
     """Candidate templates M^c: box, a cylinder along each box axis, sphere."""
 
-    completion_reach: float = 0.2
+    completion_reach: float = 0.3
     """Legs are extended (completion.py) to a surface above / below them at most this far (m)."""
 
     # --- surface planes and contacts, Eq. 1 (planes.py, contacts.py) ---

@@ -178,14 +178,21 @@ def refit_box_faces(prim: Primitive, points: np.ndarray, config: ReconConfig) ->
     return Primitive(PrimitiveKind.BOX, size, T)
 
 
+def _mad_sigma(r: np.ndarray) -> float:
+    """Robust standard deviation (1.4826 × median absolute deviation) of (n,) values; 0 if empty."""
+    return 1.4826 * float(np.median(np.abs(r - np.median(r)))) if len(r) else 0.0
+
+
 def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig) -> Primitive:
     """The box with its extents corrected for depth noise.
 
     The noise σ is the robust spread (1.4826 × MAD) of the points about the box face that holds the
     most points (the face the camera saw best; depth noise runs across it). Min/max extents of a
     noisy scan overshoot by about 3σ along that face's normal, so the faces on that axis are placed at
-    the 0.2 / 99.8 percentiles pulled in by 2.9σ (a Gaussian's 0.2 % quantile), never closer than
-    ``min_thickness`` around the median; the other axes take the 0.2 / 99.8 percentiles.
+    the 0.2 / 99.8 percentiles pulled in by 2.9σ (a Gaussian's 0.2 % quantile); the other axes take
+    the 0.2 / 99.8 percentiles. When the opposite face holds the other half of one noisy slab (an
+    inflated panel), σ is taken over both; a slab that collapses is ``min_thickness`` thick about the
+    median of its points.
     """
     if prim.kind is not PrimitiveKind.BOX:
         return prim
@@ -198,7 +205,14 @@ def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig) -> Pr
     f = int(np.argmax(counts))
     k = f // 2
     r = q[face == f, k]
-    sigma = 1.4826 * float(np.median(np.abs(r - np.median(r))))
+    sigma = _mad_sigma(r)
+    other = q[face == (f ^ 1), k]
+    if len(other) >= max(config.min_face_points, len(r) // 5):
+        gap = abs(float(np.median(r) - np.median(other)))
+        if gap <= 6.0 * max(sigma, _mad_sigma(other)):
+            # one noisy slab split between the two faces of an inflated box: judge it as one cloud
+            r = np.concatenate([r, other])
+            sigma = _mad_sigma(r)
     if sigma < config.noise_floor:
         return prim                 # a clean scan: nothing to correct
     lo = np.percentile(q, 0.2, axis=0)
@@ -206,10 +220,9 @@ def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig) -> Pr
     lo[k] += 2.9 * sigma            # depth noise runs along the rays, i.e. across the seen face
     hi[k] -= 2.9 * sigma
     if hi[k] - lo[k] < config.min_thickness:
-        # a panel seen from one side: keep the seen face where its points are, thickness inward
+        # a panel: its plane is the median of its points (noise is symmetric about the surface)
         seen = float(np.median(r))
-        sign = 1.0 if f % 2 == 1 else -1.0
-        lo[k], hi[k] = sorted((seen, seen - sign * config.min_thickness))
+        lo[k], hi[k] = seen - config.min_thickness / 2, seen + config.min_thickness / 2
     for a in range(3):
         if hi[a] - lo[a] < config.min_thickness:
             mid = (hi[a] + lo[a]) / 2

@@ -153,13 +153,28 @@ class ObjectReconstruction:
         """{part_id: fitted primitive} (for metrics: Chamfer / IoU)."""
         return {p.part_id: p.primitive for p in self.parts}
 
-    def contact_edges_undirected(self) -> dict[tuple[int, int], float]:
-        """{(min id, max id): best score over both directions} of every Eq. 1 contact
-        (the scored edge list for the kinematic-structure mAP)."""
+    def contact_edges_undirected(self, weighted: bool = True) -> dict[tuple[int, int], float]:
+        """{(min id, max id): score} of every Eq. 1 contact, best over both directions (the scored
+        edge list for the kinematic-structure mAP).
+
+        weighted : the score is the Eq. 4 edge weight — Cont times the template prior (an edge whose
+        parent the child's template does not expect, like drawer -> drawer or body -> handle, counts
+        ``foreign_parent_penalty`` of its Cont); False gives the raw Cont of Eq. 1.
+        """
+        from recon.config import ReconConfig
+        from recon.templates import template_for
+
+        penalty = ReconConfig().foreign_parent_penalty
+        labels = {p.part_id: p.label for p in self.parts}
         out: dict[tuple[int, int], float] = {}
         for e in self.contacts:
+            s = e.score
+            if weighted:
+                tpl = template_for(self.category, labels.get(e.child_part_id, ""))
+                if tpl is not None and labels.get(e.parent_part_id) not in tpl.parents:
+                    s *= penalty
             key = (min(e.parent_part_id, e.child_part_id), max(e.parent_part_id, e.child_part_id))
-            out[key] = max(out.get(key, 0.0), e.score)
+            out[key] = max(out.get(key, 0.0), s)
         return out
 
     def tree_edges(self) -> tuple[tuple[int, int], ...]:
