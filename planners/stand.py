@@ -105,7 +105,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
             continue
         if np.linalg.norm(kin.shoulder(q_seed) - p0) > kin.reach:   # grasp out of the arm's reach
             continue
-        best = None
+        best, successes = None, 0
         for gi, T_path in enumerate(T_paths):
             # Full restarts for the two preferred grasps, one for the fallbacks (they rarely decide).
             r = solve_ik(kin.tool_pose_jacobian, T_path[0], q_seed, lower, upper, arm, None,
@@ -115,6 +115,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
             if not r.success:
                 continue
             n_ik += 1
+            successes += 1
             q, reached, margin = r.q, 1, _margin(r.q, lower, upper)
             for k in idx[1:]:
                 rk = solve_ik(kin.tool_pose_jacobian, T_path[k], q, lower, upper, arm, None,
@@ -127,13 +128,16 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
             cand = StandPose(np.array([xy[0], xy[1], yaw]), r.q, gi, reached / len(idx), margin)
             if best is None or cand.rank_key() < best.rank_key():
                 best = cand
-            if cand.path_share == 1.0:
+            if cand.path_share == 1.0 or successes == 2:   # candidates are in order of preference
                 break
         if best is not None:
             best = replace(best, clearance=world.clearance(best.q_grasp, s_samples[0]))
             kept.append(best)
             n_complete += best.path_share == 1.0
             if n_complete >= cfg.stand_keep:
+                break
+            # Doors rarely have complete poses: enough partial ones after half the budget will do.
+            if len(kept) >= 2 * cfg.stand_keep and trial + 1 >= cfg.stand_candidates // 2:
                 break
     kept.sort(key=StandPose.rank_key)
     summary = (f"{trial + 1} stand poses sampled, IK reached the grasp from {n_ik}, the whole opening path "
