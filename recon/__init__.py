@@ -4,13 +4,19 @@ Pipeline (one module per product)::
 
     scan.py        read + validate scan.ply / scan.npz + labels.json            -> Scan
     leveling.py    optional: find the floor and the up direction               -> levelled Scan
-    fitting.py     Eq. 3: best primitive per part (OBB candidates + ICP)       -> PartFit
-    contacts.py    Eq. 1: Align / Dist / Cont on the primitives' planes Π      -> ContactEdge
-    part_tree.py   Eq. 4: maximum spanning arborescence (Edmonds), root = base part
+    outliers.py    statistical outlier removal per part (flying pixels)
+    bounding.py    robust oriented boxes (upright / free / principal axes)
+    fitting.py     Eq. 3: best primitive per part (OBB candidates + ICP, observed-face score,
+                   depth-noise-corrected box extents)                          -> PartFit
+    completion.py  legs extended to their supports, handles back onto their mounts
+    planes.py      surface planes Π: exact primitive faces (default) or RANSAC on the points
+    contacts.py    Eq. 1: Align / Dist / Cont with shapely polygon intersection -> ContactEdge
+    part_tree.py   Eq. 4: maximum spanning arborescence (Edmonds), root = base part, template prior
     refinement.py  Alg. 1: Kabsch rotation of each child onto its parent's planes, top down
-    joints.py      articulated templates (templates.py): joint type, axis, origin, limits
+    joints.py      articulated templates (templates.py): joint type, axis, origin, limits (sweeps)
     scene_graph.py objects: support (floor / another object), proximity, upright pose
     scene_urdf.py  scene.urdf (yourdfpy);  graph_json.py  graph.json;  preview.py  preview.png
+    output.py      atomic writing;  cli.py  ``recon build``;  open3d_engine.py  the open3d adapter
 
 Python API::
 
@@ -27,7 +33,8 @@ Python API::
             part.primitive.to_trimesh(), part.primitive.sample_surface(n, rng)
         obj.joints                    # JointEstimate: name, type, parent_part_id, child_part_id,
                                       #   axis (3,), origin (3,), lower, upper, contact_score
-        obj.contact_edges_undirected()   # {(a, b): score} every Eq. 1 contact (for mAP)
+        obj.contact_edges_undirected()   # {(a, b): score} every Eq. 1 contact (for mAP);
+                                      #   score = Cont x template prior (weighted=False: raw Cont)
         obj.tree_edges()              # ((parent, child), ...) the estimated part tree
     rec.graph.supports, rec.graph.proximal, rec.warnings
 

@@ -46,13 +46,10 @@ class ReconConfig:
     trades a few degrees of yaw for a fraction of a millimetre of score."""
     icp_candidate_ratio: float = 2.0
     """Only candidates whose unaligned score is within this factor of the best one are ICP-aligned."""
-    face_band: float = 0.03
-    """Box faces are re-placed at the median of the points within this distance (m) of them, so
-    depth noise and stray points do not inflate a box the way min/max extents do."""
     noise_floor: float = 0.003
     """Depth noise (m, robust σ across a box's best-seen face) below which extents are not corrected."""
     min_face_points: int = 12
-    """A face with fewer points in its band keeps its bounding-box position."""
+    """The opposite face needs this many points (and a fifth of the best face's) to join a noise estimate."""
     coverage_distance: float = 0.02
     """A primitive surface sample is 'seen' when a scan point lies within this distance (m)."""
     min_face_coverage: float = 0.25

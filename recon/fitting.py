@@ -23,7 +23,7 @@ from recon.bounding import oriented_box
 from recon.config import ReconConfig
 from recon.primitive import Primitive, PrimitiveKind
 
-__all__ = ["FitScore", "candidate_primitives", "score_primitive", "refit_box_faces", "fit_part"]
+__all__ = ["FitScore", "candidate_primitives", "score_primitive", "denoised_box", "dominant_yaw", "fit_part"]
 
 # rotations making a box axis the local z of a cylinder: columns = (new x, new y, new z) in box axes
 _AXIS_PERM = {
@@ -154,28 +154,6 @@ def score_primitive(prim: Primitive, points: np.ndarray, tree: cKDTree, config: 
     p2s = float(prim.surface_distance(points).mean())
     return FitScore(float(d.mean()), obs, p2s, obs + config.point_term_weight * p2s,
                     tuple(int(f) for f in observed))
-
-
-def refit_box_faces(prim: Primitive, points: np.ndarray, config: ReconConfig) -> Primitive:
-    """A box with each face moved to the median offset of the points within ``face_band`` of it
-    (assigned to their nearest face); faces with fewer than ``min_face_points`` stay put."""
-    if prim.kind is not PrimitiveKind.BOX:
-        return prim
-    q = prim.to_part(points)
-    h = prim.size / 2.0
-    lo, hi = -h.copy(), h.copy()
-    d = np.abs(np.abs(q) - h)                       # (n, 3) distance to the face plane on each axis
-    nearest = np.argmin(d, axis=1)
-    for k in range(3):
-        for sign, bound in ((-1.0, lo), (1.0, hi)):
-            sel = (nearest == k) & (np.sign(q[:, k]) == sign) & (d[:, k] <= config.face_band)
-            if sel.sum() >= config.min_face_points:
-                bound[k] = float(np.median(q[sel, k]))
-    size = np.maximum(hi - lo, config.min_thickness)
-    mid = (hi + lo) / 2
-    T = prim.T_world_part.copy()
-    T[:3, 3] = prim.to_world(mid[None])[0]
-    return Primitive(PrimitiveKind.BOX, size, T)
 
 
 def _mad_sigma(r: np.ndarray) -> float:
