@@ -22,7 +22,7 @@ __all__ = ["key_frame_indices", "key_frame_images", "camera_for", "FRAME_SIZE"]
 log = logging.getLogger(__name__)
 
 #: Width, height of a key frame, pixels.
-FRAME_SIZE = (400, 300)
+FRAME_SIZE = (360, 270)
 #: Camera distance from the handle (m), height above it (m) and angle off the opening direction (deg).
 CAMERA_DISTANCE, CAMERA_HEIGHT, CAMERA_ANGLE_DEG = 1.9, 1.0, 50.0
 #: The last metres of the line of sight before the handle that may cross parts (the drawer, the body).

@@ -1,13 +1,16 @@
 """Pictures of one executed task: the joint opening over time against the plan, and key frames.
 
-Pure matplotlib over arrays; where the arrays come from is :mod:`._tasks`' business.
+Matplotlib (the plot) and Pillow (the frame strip) over arrays; where the arrays come from is
+:mod:`._tasks`' business.
 """
 
 from __future__ import annotations
 
+import io
 from collections.abc import Sequence
 
 import numpy as np
+from PIL import Image, ImageDraw, ImageFont
 
 from ._figure import new_figure, png_from_figure
 
@@ -49,16 +52,24 @@ def png_of_opening(t: np.ndarray, q: np.ndarray, t_plan: np.ndarray | None, q_pl
     return png_from_figure(fig)
 
 
-def png_of_key_frames(frames: Sequence[tuple[str, np.ndarray]], per_row: int = 5) -> bytes:
-    """A strip of (caption, (h, w, 3) uint8 RGB) images, ``per_row`` per row."""
-    n = len(frames)
-    rows = max(1, -(-n // per_row))
-    cols = min(per_row, max(n, 1))
-    h, w = frames[0][1].shape[:2] if n else (240, 320)
-    fig = new_figure(cols * 3.2, rows * 3.2 * h / w + 0.3 * rows)
+def png_of_key_frames(frames: Sequence[tuple[str, np.ndarray]], per_row: int = 5, caption_px: int = 14,
+                      gap_px: int = 8) -> bytes:
+    """A strip of ``(caption, (h, w, 3) uint8 RGB)`` images, ``per_row`` per row, each captioned above
+    (composed with Pillow: no figure needed for images that are already pixels)."""
+    if not frames:
+        raise ValueError("png_of_key_frames: no frames")
+    h, w = frames[0][1].shape[:2]
+    cols = min(per_row, len(frames))
+    rows = -(-len(frames) // per_row)
+    cell_h = caption_px + 6 + h
+    canvas = Image.new("RGB", (cols * w + (cols - 1) * gap_px, rows * cell_h + (rows - 1) * gap_px), "white")
+    draw = ImageDraw.Draw(canvas)
+    font = ImageFont.load_default(size=caption_px)
     for i, (caption, image) in enumerate(frames):
-        ax = fig.add_subplot(rows, cols, i + 1)
-        ax.imshow(image)
-        ax.set_title(caption, fontsize=8)
-        ax.set_axis_off()
-    return png_from_figure(fig)
+        x, y = (i % per_row) * (w + gap_px), (i // per_row) * (cell_h + gap_px)
+        tw = draw.textlength(caption, font=font)
+        draw.text((x + (w - tw) / 2, y), caption, fill=(40, 40, 40), font=font)
+        canvas.paste(Image.fromarray(np.asarray(image, dtype=np.uint8)[:, :, :3]).resize((w, h)), (x, y + caption_px + 6))
+    out = io.BytesIO()
+    canvas.save(out, format="PNG", optimize=True)
+    return out.getvalue()
