@@ -37,8 +37,8 @@ import numpy as np
 
 from simcheck.report import DemoLayout, render_report
 
-__all__ = ["DemoConfig", "StageStatus", "StageRecord", "DemoResult", "TaskChoice", "choose_tasks", "usable_tasks", "run_demo",
-           "main"]
+__all__ = ["DemoConfig", "StageStatus", "StageRecord", "DemoResult", "TaskChoice", "choose_tasks", "usable_tasks",
+           "metrics_doc", "run_demo", "main"]
 
 log = logging.getLogger("simcheck.demo")
 

@@ -51,7 +51,8 @@ def _scan_section(lay: DemoLayout, azim: float) -> str:
     if not lay.scan_npz.exists() or not lay.labels_json.exists():
         return _missing("the scan", lay.scan_npz if not lay.scan_npz.exists() else lay.labels_json)
     scan = load_scan(lay.scan_npz, lay.labels_json)
-    return img(png_of_scan(scan, azim_deg=azim), "The virtual scan: each part in its own colour (left) and by label (right).",
+    return img(png_of_scan(scan, azim_deg=azim),
+               "The scan: each part in its own colour (left) and by its label (right); unlabelled points faint grey.",
                "scan")
 
 
@@ -63,7 +64,8 @@ def _scene_section(lay: DemoLayout, truth: dict | None) -> str:
         panels.append(("truth (truth.json)", solids_from_truth(truth, str(lay.truth_json))))
     if not panels:
         return _missing("the reconstruction and the truth", lay.scene_urdf)
-    body = img(png_of_scenes(panels, azim_deg=view_azimuth(truth)), "Primitive parts of the reconstruction beside the ground truth, "
+    body = img(png_of_scenes(panels, azim_deg=view_azimuth(truth)),
+               "Primitive parts of the reconstruction beside the ground truth, "
                "coloured by part label, in the state the scan saw.", "scene")
     if not lay.scene_urdf.exists():
         body = _missing("the reconstruction", lay.scene_urdf) + body

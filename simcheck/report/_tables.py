@@ -111,7 +111,8 @@ def criteria_table(task_key: str, criteria: list[Mapping]) -> str:
         key = f"cert.{task_key}.{name}"
         passed = c.get("passed")
         unit = str(c.get("unit", "") or "")
-        rows.append([esc(name), badge("pass" if passed else "fail", passed) if passed is not None else badge("n/a", None),
+        result = badge("n/a", None) if passed is None else badge("pass" if passed else "fail", passed)
+        rows.append([esc(name), result,
                      num(c.get("value"), key + ".value", unit), esc(c.get("comparison", "")),
                      num(c.get("threshold"), key + ".threshold", unit), num(c.get("margin"), key + ".margin", unit),
                      esc(c.get("description", "")) + (f"<br><i>{esc(c['detail'])}</i>" if c.get("detail") else "")])
