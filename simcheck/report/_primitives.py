@@ -7,7 +7,6 @@ the reconstruction are drawn by the same code.
 
 from __future__ import annotations
 
-import json
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
@@ -159,12 +158,3 @@ def mesh_from_solid(solid: Solid, sections: int = 16) -> trimesh.Trimesh:
         mesh = trimesh.creation.icosphere(subdivisions=1, radius=solid.size[0])
     mesh.apply_transform(solid.T_world_shape)
     return mesh
-
-
-def load_truth(path: str | Path) -> dict:
-    """``truth.json`` as a dict; raises :class:`ArtifactError` naming the file when unreadable."""
-    path = Path(path)
-    try:
-        return json.loads(path.read_text())
-    except (OSError, ValueError) as exc:
-        raise ArtifactError(f"{path}: cannot read truth JSON ({exc})") from exc
