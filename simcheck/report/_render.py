@@ -104,6 +104,7 @@ def _tasks_section(lay: DemoLayout, cert: dict | None) -> str:
     parts = []
     for i, task in enumerate(tasks):
         key = _task_key(task, i)
+        log.info("report: task %d/%d %s", i + 1, len(tasks), key)
         status = str(task.get("status", "?"))
         criteria = task.get("criteria", [])
         if isinstance(criteria, Mapping):  # {name: {...}} form
@@ -162,6 +163,7 @@ def render_report(demo_dir: str | os.PathLike, out_html: str | os.PathLike | Non
 
     if cert is not None and not isinstance(cert.get("tasks"), list):  # fail before drawing anything
         raise ArtifactError(f"{lay.certificate_json}: expected a list under 'tasks'")
+    log.info("report: drawing the scan, the scenes and the part trees of %s", lay.root)
     sections = []
     if demo is not None:
         sections.append(("pipeline", "Pipeline", pipeline_table(demo.get("stages", []))))
