@@ -25,6 +25,10 @@ __all__ = ["JointType", "PartFit", "ContactEdge", "JointEstimate", "ObjectRecons
            "SceneGraph", "Reconstruction"]
 
 
+UNCONTACTED_TREE_EDGE_SCORE = 0.05
+"""Score given (for the mAP ranking) to a tree edge the part tree made without an Eq. 1 contact."""
+
+
 class JointType(str, Enum):
     """URDF joint types used by the part tree."""
 
@@ -154,27 +158,36 @@ class ObjectReconstruction:
         return {p.part_id: p.primitive for p in self.parts}
 
     def contact_edges_undirected(self, weighted: bool = True) -> dict[tuple[int, int], float]:
-        """{(min id, max id): score} of every Eq. 1 contact, best over both directions (the scored
-        edge list for the kinematic-structure mAP).
+        """{(min id, max id): score} of every estimated contact (the scored edge list for the
+        kinematic-structure mAP).
 
-        weighted : the score is the Eq. 4 edge weight — Cont times the template prior (an edge whose
-        parent the child's template does not expect, like drawer -> drawer or body -> handle, counts
-        ``foreign_parent_penalty`` of its Cont); False gives the raw Cont of Eq. 1.
+        The score of a pair is its best Eq. 1 Cont over both directions. ``weighted`` (default)
+        multiplies it by the template prior when neither direction is one the templates expect
+        (drawer–drawer, body–handle, leg–headboard: ``foreign_parent_penalty``), and also lists the
+        tree edges the part tree made without an Eq. 1 contact (a parent the template expects, close
+        by) with score ``UNCONTACTED_TREE_EDGE_SCORE``. ``weighted=False``: raw Eq. 1 contacts only.
         """
         from recon.config import ReconConfig
         from recon.templates import template_for
 
         penalty = ReconConfig().foreign_parent_penalty
         labels = {p.part_id: p.label for p in self.parts}
+
+        def expected(parent: int, child: int) -> bool:
+            tpl = template_for(self.category, labels.get(child, ""))
+            return tpl is None or labels.get(parent) in tpl.parents
+
         out: dict[tuple[int, int], float] = {}
         for e in self.contacts:
-            s = e.score
-            if weighted:
-                tpl = template_for(self.category, labels.get(e.child_part_id, ""))
-                if tpl is not None and labels.get(e.parent_part_id) not in tpl.parents:
-                    s *= penalty
             key = (min(e.parent_part_id, e.child_part_id), max(e.parent_part_id, e.child_part_id))
-            out[key] = max(out.get(key, 0.0), s)
+            out[key] = max(out.get(key, 0.0), e.score)
+        if not weighted:
+            return out
+        for (a, b), s in out.items():
+            if not (expected(a, b) or expected(b, a)):
+                out[(a, b)] = s * penalty
+        for p, c in self.tree_edges():
+            out.setdefault((min(p, c), max(p, c)), UNCONTACTED_TREE_EDGE_SCORE)
         return out
 
     def tree_edges(self) -> tuple[tuple[int, int], ...]:
