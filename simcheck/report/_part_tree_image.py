@@ -19,6 +19,8 @@ __all__ = ["PartTree", "trees_from_scene_json", "png_of_part_trees"]
 
 #: Edge colour per joint type.
 _JOINT_COLOURS = {"fixed": "#555555", "prismatic": "#1f77b4", "revolute": "#d62728"}
+#: Edge label per joint type (the report's legend spells them out).
+_JOINT_LETTERS = {"fixed": "F", "prismatic": "P", "revolute": "R"}
 
 
 @dataclass(frozen=True)
@@ -29,6 +31,8 @@ class PartTree:
     name: str
     category: str
     graph: nx.DiGraph
+    other_contacts: tuple[tuple[int, int, float | None], ...] = ()
+    """Contacts between parts that are not tree edges: ``(part a, part b, score or None)``."""
 
 
 def trees_from_scene_json(doc: Mapping, source: str) -> list[PartTree]:
@@ -36,7 +40,9 @@ def trees_from_scene_json(doc: Mapping, source: str) -> list[PartTree]:
 
     Reads ``objects[].parts[]`` (``id`` or ``part_id``, ``label``) and ``objects[].joints[]``
     (``parent_part_id``, ``child_part_id``, ``type``, ``name``, optional ``contact_score``); a joint whose
-    parent is null (the object's root hanging from the world) adds no edge.
+    parent is null (the object's root hanging from the world) adds no edge. ``objects[].contacts`` --
+    graph.json's scored Eq. 1 contacts (``parent_part_id``, ``child_part_id``, ``score``) or truth.json's
+    ``[a, b]`` pairs -- that are not tree edges become :attr:`PartTree.other_contacts`.
     """
     objects = doc.get("objects")
     if not isinstance(objects, list):
@@ -61,8 +67,27 @@ def trees_from_scene_json(doc: Mapping, source: str) -> list[PartTree]:
             score = joint.get("contact_score")
             g.add_edge(int(parent), int(child), type=str(joint.get("type", "?")),
                        joint=str(joint.get("name", "")), score=None if score is None else float(score))
-        trees.append(PartTree(name, str(obj.get("category", "")), g))
+        others = _other_contacts(obj.get("contacts", []), g)
+        trees.append(PartTree(name, str(obj.get("category", "")), g, others))
     return trees
+
+
+def _other_contacts(contacts, g: nx.DiGraph) -> tuple[tuple[int, int, float | None], ...]:
+    """Undirected contacts (best score per pair) between parts of ``g`` that are not edges of ``g``."""
+    best: dict[frozenset, float | None] = {}
+    for c in contacts:
+        if isinstance(c, Mapping):
+            a, b, score = c.get("parent_part_id"), c.get("child_part_id"), c.get("score")
+        else:
+            (a, b), score = c, None
+        if a is None or b is None or int(a) not in g or int(b) not in g:
+            continue
+        if g.has_edge(int(a), int(b)) or g.has_edge(int(b), int(a)):
+            continue
+        key = frozenset((int(a), int(b)))
+        old = best.get(key)
+        best[key] = score if old is None else (old if score is None else max(old, float(score)))
+    return tuple((min(k), max(k), None if s is None else float(s)) for k, s in sorted(best.items(), key=str))
 
 
 def _layout(g: nx.DiGraph) -> dict[int, np.ndarray]:
@@ -98,6 +123,11 @@ def _draw_tree(ax, tree: PartTree, title: str) -> None:
         return
     pos = _layout(g)
     colours = [colour_of_label(g.nodes[n]["label"]) for n in g.nodes]
+    if tree.other_contacts:  # the contacts the tree did not keep, as in the paper's Fig. 3(b)
+        und = nx.Graph()
+        und.add_nodes_from(g.nodes)
+        und.add_edges_from((a, b) for a, b, _ in tree.other_contacts)
+        nx.draw_networkx_edges(und, pos, ax=ax, edge_color="#c8c8c8", style="dotted", width=0.9)
     nx.draw_networkx_nodes(g, pos, ax=ax, node_color=colours, node_size=900, edgecolors="black")
     for n in g.nodes:  # white text on dark nodes
         dark = sum(colour_of_label(g.nodes[n]["label"])) < 1.2
@@ -107,8 +137,8 @@ def _draw_tree(ax, tree: PartTree, title: str) -> None:
         nx.draw_networkx_edges(g, pos, edgelist=[(u, v)], ax=ax, arrows=True, arrowsize=12,
                                edge_color=_JOINT_COLOURS.get(data["type"], "#9467bd"), width=2.0,
                                node_size=900)
-    edge_labels = {(u, v): d["type"] + ("" if d["score"] is None else f"\n{d['score']:.2f}")
-                   for u, v, d in g.edges(data=True)}
+    edge_labels = {(u, v): _JOINT_LETTERS.get(d["type"], d["type"])
+                   + ("" if d["score"] is None else f" {d['score']:.2f}") for u, v, d in g.edges(data=True)}
     nx.draw_networkx_edge_labels(g, pos, edge_labels=edge_labels, ax=ax, font_size=7, rotate=False, label_pos=0.7,
                                  bbox={"boxstyle": "round", "fc": "white", "ec": "none", "alpha": 0.8})
     ax.set_title(title, fontsize=10)
@@ -120,7 +150,7 @@ def png_of_part_trees(panels: Sequence[tuple[str, PartTree]], panel_in: float = 
     """One PNG with a tree per ``(title, tree)`` side by side (e.g. estimate beside truth); a panel is
     wider when a layer of its tree has many parts."""
     widest = max([_widest_layer(t.graph) for _, t in panels] + [1])
-    fig = new_figure(max(panel_in, 1.15 * widest) * len(panels), panel_in)
+    fig = new_figure(max(panel_in, 1.3 * widest) * len(panels), panel_in)
     for i, (title, tree) in enumerate(panels):
         _draw_tree(fig.add_subplot(1, len(panels), i + 1), tree, title)
     return png_from_figure(fig)

@@ -77,9 +77,11 @@ def _tree_section(lay: DemoLayout, graph: dict | None, truth: dict | None) -> st
         return _missing("the part trees", lay.graph_json)
     est = {t.name: t for t in trees_from_scene_json(graph, str(lay.graph_json))} if graph else {}
     tru = {t.name: t for t in trees_from_scene_json(truth, str(lay.truth_json))} if truth else {}
-    intro = ("Each object's parts (nodes, coloured by label) and joints (edges parent &rarr; child, "
-             "labelled by joint type and, for the estimate, the contact score that chose the edge: the "
-             "maximum spanning arborescence of the paper's Eq. 4 / Fig. 3).")
+    intro = ("Each object's parts (nodes, coloured by label) and joints (arrows parent &rarr; child) as in "
+             "the paper's Fig. 3: <b>P</b> prismatic (blue), <b>R</b> revolute (red), <b>F</b> fixed (grey); "
+             "for the estimate the number is the contact score (Eq. 1) of the edge the maximum spanning "
+             "arborescence (Eq. 4) kept. Dotted: other contacts between parts, not kept in the tree "
+             "(for the truth: true contacts that are not joints).")
     figs = []
     for name in list(est) + [n for n in tru if n not in est]:
         panels = [(f"{name}: estimate", est[name])] if name in est else []

@@ -241,3 +241,34 @@ def test_missing_artifacts_are_announced_not_invented(tmp_path):
 
 def test_inputs_are_not_modified(rendered):
     assert rendered["inputs_before"] == rendered["inputs_after"]
+
+
+def test_part_tree_reads_joints_and_keeps_non_tree_contacts_apart():
+    from simcheck.report._part_tree_image import trees_from_scene_json
+
+    doc = {"objects": [{"name": "cabinet3", "category": "cabinet",
+                        "parts": [{"part_id": 11, "label": "body"}, {"part_id": 12, "label": "drawer"},
+                                  {"part_id": 13, "label": "handle"}],
+                        "joints": [{"name": "cabinet3_body11_joint", "type": "fixed", "parent_part_id": None,
+                                    "child_part_id": 11},
+                                   {"name": "cabinet3_drawer12_joint", "type": "prismatic", "parent_part_id": 11,
+                                    "child_part_id": 12, "contact_score": 0.9},
+                                   {"name": "cabinet3_handle13_joint", "type": "fixed", "parent_part_id": 12,
+                                    "child_part_id": 13, "contact_score": 0.7}],
+                        "contacts": [{"parent_part_id": 11, "child_part_id": 12, "score": 0.9},
+                                     {"parent_part_id": 11, "child_part_id": 13, "score": 0.2},
+                                     {"parent_part_id": 13, "child_part_id": 11, "score": 0.4}]}]}
+    (tree,) = trees_from_scene_json(doc, "graph.json")
+    assert sorted(tree.graph.edges(data="type")) == [(11, 12, "prismatic"), (12, 13, "fixed")]
+    assert tree.graph.edges[11, 12]["score"] == pytest.approx(0.9)
+    assert tree.other_contacts == ((11, 13, 0.4),)  # best score of the pair, tree edges left out
+
+
+def test_part_tree_rejects_a_joint_naming_a_missing_part():
+    from simcheck.report._part_tree_image import trees_from_scene_json
+
+    doc = {"objects": [{"name": "cabinet3", "parts": [{"id": 11, "label": "body"}],
+                        "joints": [{"name": "cabinet3_drawer12_joint", "type": "prismatic", "parent_part_id": 11,
+                                    "child_part_id": 12}]}]}
+    with pytest.raises(ArtifactError, match=r"graph\.json: object cabinet3: joint 'cabinet3_drawer12_joint' names part 12"):
+        trees_from_scene_json(doc, "graph.json")
