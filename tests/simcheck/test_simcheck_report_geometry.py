@@ -1,0 +1,77 @@
+"""The report's pure parts: primitives read from URDF and truth.json agree, number formatting, the
+key-frame camera avoids walls."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from simcheck.report import ArtifactError
+from simcheck.report._html import format_number
+from simcheck.report._key_frames import _segment_hits_box, camera_for
+from simcheck.report._primitives import Solid, solids_from_truth, solids_from_urdf
+
+TRUTH = Path(__file__).with_name("test_simcheck_report_data") / "truth"
+
+
+def test_truth_urdf_and_truth_json_give_the_same_primitives():
+    """Forward kinematics over the URDF's joint origins lands every shape where truth.json says it is."""
+    from_json = solids_from_truth(json.loads((TRUTH / "truth.json").read_text()))
+    from_urdf = [s for s in solids_from_urdf(TRUTH / "truth.urdf") if s.label]  # walls are not parts
+    assert len(from_json) == len(from_urdf) > 50
+
+    def key(s: Solid):
+        return (s.link, s.kind, tuple(np.round(s.T_world_shape[:3, 3], 4)))
+
+    a, b = sorted(from_json, key=key), sorted(from_urdf, key=key)
+    for sa, sb in zip(a, b):
+        assert sa.link == sb.link and sa.kind == sb.kind
+        np.testing.assert_allclose(sa.size, sb.size, atol=1e-6)
+        np.testing.assert_allclose(sa.T_world_shape, sb.T_world_shape, atol=1e-6)
+
+
+def test_urdf_with_a_joint_cycle_or_bad_box_is_rejected_naming_it(tmp_path):
+    bad = tmp_path / "bad.urdf"
+    bad.write_text('<robot name="r"><link name="a"><visual><geometry><box size="0.1 -1 0.1"/></geometry>'
+                   "</visual></link></robot>")
+    with pytest.raises(ArtifactError, match=r"bad\.urdf: link 'a' visual: box size must be 3 positive numbers"):
+        solids_from_urdf(bad)
+    (tmp_path / "x.urdf").write_text("<robot><link")
+    with pytest.raises(ArtifactError, match=r"x\.urdf: cannot read URDF"):
+        solids_from_urdf(tmp_path / "x.urdf")
+
+
+@pytest.mark.parametrize("value, shown", [(0.123456, "0.1235"), (12345.678, "1.235e+04"), (3, "3"), (True, "yes"),
+                                          (None, "–"), (float("inf"), "inf"), (-0.5, "-0.5")])
+def test_numbers_are_shown_with_four_significant_digits(value, shown):
+    assert format_number(value) == shown
+
+
+def _box(centre, size):
+    T = np.eye(4)
+    T[:3, 3] = centre
+    return Solid("box", np.asarray(size, float), T, "wall", "")
+
+
+def test_segment_box_test():
+    box = _box([0, 0, 0], [1, 1, 1])
+    assert _segment_hits_box(np.array([-2.0, 0, 0]), np.array([2.0, 0, 0]), box)
+    assert not _segment_hits_box(np.array([-2.0, 2, 0]), np.array([2.0, 2, 0]), box)
+    assert not _segment_hits_box(np.array([-2.0, 0, 0]), np.array([-1.0, 0, 0]), box)  # stops short
+
+
+def test_key_frame_camera_turns_away_from_a_wall_that_blocks_the_preferred_view():
+    # a handle at the origin pulled along +x; the preferred eye is +50 deg to the side (towards +y)
+    handle = np.repeat(np.eye(4)[None], 2, axis=0)
+    handle[1, 0, 3] = 0.3
+    rollout = SimpleNamespace(T_world_handle=handle, tool_pos=np.array([[0.5, 0.0, 0.0]]))
+    target, eye_free = camera_for(rollout)
+    assert eye_free[1] > 0.5  # preferred side
+    wall = _box([0.8, 1.0, 1.0], [4.0, 0.1, 3.0])  # a wall between the handle and that side
+    target, eye = camera_for(rollout, [wall])
+    assert not _segment_hits_box(eye, target + 0.3 * (eye - target) / np.linalg.norm(eye - target), wall)
+    assert eye[1] < 1.0 and not np.allclose(eye, eye_free)
