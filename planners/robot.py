@@ -20,11 +20,12 @@ from __future__ import annotations
 import hashlib
 import os
 import re
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+
+from scenes.atomic_write import write_text_atomic
 
 __all__ = ["RobotSpec", "default_robot", "robot_cache_dir", "PANDA_HOME"]
 
@@ -180,14 +181,6 @@ def _panda_body_xml() -> str:
     return body
 
 
-def _write_atomic(path: Path, text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
-    with os.fdopen(fd, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)
-
-
 def default_robot() -> RobotSpec:
     """The default mobile manipulator: planar base + Franka Panda + parallel gripper.
 
@@ -200,7 +193,7 @@ def default_robot() -> RobotSpec:
     digest = hashlib.sha1(text.encode()).hexdigest()[:12]
     path = robot_cache_dir() / f"mobile_panda_{digest}.urdf"
     if not path.exists():
-        _write_atomic(path, text)
+        write_text_atomic(path, text)
     arm = tuple(f"panda_joint{i}" for i in range(1, 8))
     return RobotSpec(
         urdf=path,

@@ -19,11 +19,10 @@ from __future__ import annotations
 
 import enum
 import json
-import os
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from scenes.atomic_write import write_text_atomic
 from simcheck.criteria import CriterionResult
 from simcheck.errors import SimcheckInputError
 
@@ -183,18 +182,7 @@ class Certificate:
 
 def write_json_atomic(path: Path, doc: dict) -> Path:
     """Write ``doc`` as JSON to ``path`` through a temporary file in the same folder + rename."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".json.tmp")
-    try:
-        with os.fdopen(fd, "w") as fh:
-            json.dump(doc, fh, indent=2, allow_nan=False)
-            fh.write("\n")
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    return write_text_atomic(path, json.dumps(doc, indent=2, allow_nan=False) + "\n")
 
 
 def software_versions() -> dict:

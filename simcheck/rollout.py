@@ -9,13 +9,12 @@ Sample ``i`` is taken at time ``t[i]`` (seconds since the task started). World f
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from dataclasses import dataclass, fields
 from pathlib import Path
 
 import numpy as np
 
+from scenes.atomic_write import write_with_atomic
 from simcheck.errors import RolloutFormatError
 
 __all__ = ["Rollout", "ROLLOUT_FORMAT"]
@@ -135,16 +134,7 @@ class Rollout:
             else:
                 arrays[f.name] = np.asarray(v)
         arrays["meta"] = np.array(json.dumps(meta))
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".npz.tmp")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                np.savez_compressed(fh, **arrays)
-            os.replace(tmp, path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
-        return path
+        return write_with_atomic(path, lambda tmp: np.savez_compressed(tmp, **arrays))  # tmp ends in .npz
 
     @classmethod
     def load(cls, path: str | Path) -> "Rollout":
