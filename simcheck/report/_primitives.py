@@ -112,17 +112,18 @@ def solids_from_urdf(path: str | Path) -> list[Solid]:
 
     cache: dict[str, np.ndarray] = {}
 
-    def T_world(link: str, depth: int = 0) -> np.ndarray:
-        if link in cache:
-            return cache[link]
-        if depth > 1000:
-            raise ArtifactError(f"{path}: the joints around link {link!r} form a cycle")
-        if link not in parent_of:
-            T = np.eye(4)
-        else:
-            parent, T_parent_child = parent_of[link]
-            T = T_world(parent, depth + 1) @ T_parent_child
-        cache[link] = T
+    def T_world(link: str) -> np.ndarray:
+        chain, seen = [], set()  # walk up to the root (or a cached link), then compose downwards
+        while link not in cache and link in parent_of:
+            if link in seen:
+                raise ArtifactError(f"{path}: the joints around link {link!r} form a cycle")
+            seen.add(link)
+            chain.append(link)
+            link = parent_of[link][0]
+        T = cache.get(link, np.eye(4))
+        for child in reversed(chain):
+            T = T @ parent_of[child][1]
+            cache[child] = T
         return T
 
     solids: list[Solid] = []

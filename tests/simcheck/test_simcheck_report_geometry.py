@@ -34,7 +34,7 @@ def test_truth_urdf_and_truth_json_give_the_same_primitives():
         np.testing.assert_allclose(sa.T_world_shape, sb.T_world_shape, atol=1e-6)
 
 
-def test_urdf_with_a_joint_cycle_or_bad_box_is_rejected_naming_it(tmp_path):
+def test_malformed_urdf_is_rejected_naming_file_and_link(tmp_path):
     bad = tmp_path / "bad.urdf"
     bad.write_text('<robot name="r"><link name="a"><visual><geometry><box size="0.1 -1 0.1"/></geometry>'
                    "</visual></link></robot>")
@@ -43,6 +43,13 @@ def test_urdf_with_a_joint_cycle_or_bad_box_is_rejected_naming_it(tmp_path):
     (tmp_path / "x.urdf").write_text("<robot><link")
     with pytest.raises(ArtifactError, match=r"x\.urdf: cannot read URDF"):
         solids_from_urdf(tmp_path / "x.urdf")
+    loop = tmp_path / "loop.urdf"
+    box = '<visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
+    loop.write_text(f'<robot name="r"><link name="a">{box}</link><link name="b">{box}</link>'
+                    '<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>'
+                    '<joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint></robot>')
+    with pytest.raises(ArtifactError, match=r"loop\.urdf: the joints around link '[ab]' form a cycle"):
+        solids_from_urdf(loop)
 
 
 @pytest.mark.parametrize("value, shown", [(0.123456, "0.1235"), (12345.678, "1.235e+04"), (3, "3"), (True, "yes"),
