@@ -16,7 +16,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from ._errors import ArtifactError
-from ._html import badge, esc, img, note, num, page, section
+from ._html import badge, esc, img, note, num, page, section, table
 from ._layout import DemoLayout
 from ._part_tree_image import png_of_part_trees, trees_from_scene_json
 from ._primitives import solids_from_truth, solids_from_urdf
@@ -126,7 +126,13 @@ def _tasks_section(lay: DemoLayout, cert: dict | None) -> str:
         if not figs:
             figs = note(f"No recorded rollout for {key} (the task was not executed).", "info")
         parts.append(f'<div class="task" id="task-{esc(key)}">{head}{criteria_table(key, criteria)}{figs}</div>')
-    return "".join(parts)
+    summary = table(["task", "status", "failed criteria"],
+                    [[f'<a href="#task-{esc(_task_key(t, i))}">{esc(t.get("kind", ""))}:{esc(_task_key(t, i))}</a>',
+                      badge(str(t.get("status", "?")), t.get("status") == "certified"),
+                      esc(", ".join(c.get("name", "?") for c in t.get("criteria", [])
+                                    if isinstance(c, Mapping) and c.get("passed") is False) or "none")]
+                     for i, t in enumerate(tasks)], "summary")
+    return summary + "".join(parts)
 
 
 def _required_fraction(cert: Mapping) -> float | None:
