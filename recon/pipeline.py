@@ -89,6 +89,10 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
         ordered = sorted(obj.parts, key=lambda p: p.part_id != base)
         R_ref = None
         for p in ordered:
+            shape = _degeneracy(p.points, config.min_thickness)
+            if shape:
+                warn(f"object {obj.id} ({obj.category}) part {p.part_id} ({p.label}): its points are {shape}; "
+                     f"the primitive is given the minimum thickness {config.min_thickness} m")
             small = len(p.points) < config.small_part_points
             name, prim, score, table = fit_part(p.points, config, seed=_part_seed(seed, p.part_id),
                                                 normals=p.normals, R_world_ref=R_ref if small else None)
@@ -224,6 +228,17 @@ def _without_outliers(scan: Scan, config: ReconConfig) -> tuple[Scan, int]:
                       normals=None if scan.normals is None else scan.normals[keep],
                       colors=None if scan.colors is None else scan.colors[keep], objects=tuple(objects))
     return cleaned, int((~keep).sum())
+
+
+def _degeneracy(points: np.ndarray, min_thickness: float) -> str:
+    """"" for a solid cloud, else "flat (...)" or "collinear (...)" from its principal extents."""
+    c = points - points.mean(axis=0)
+    ext = np.sort(np.ptp(c @ np.linalg.svd(c, full_matrices=False)[2].T, axis=0))
+    if ext[1] < min_thickness:
+        return f"collinear (spread {ext[1] * 1000:.1f} mm across a {ext[2]:.2f} m line)"
+    if ext[0] < 1e-4:
+        return f"flat (spread {ext[0] * 1000:.2f} mm off a plane)"
+    return ""
 
 
 def _clipped_below(prim: Primitive, z: float) -> Primitive:

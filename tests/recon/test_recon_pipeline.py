@@ -159,3 +159,19 @@ def test_cli_builds_and_refuses_bad_input_without_writing(synth, tmp_path):
     assert run.returncode == 2
     assert "NaN" in run.stderr and "scan.ply" in run.stderr and "point 7" in run.stderr
     assert not out2.exists() or not any(out2.iterdir())
+
+
+def test_flat_and_collinear_parts_are_reconstructed_with_a_warning_naming_them():
+    rng = np.random.default_rng(2)
+    flat = np.c_[rng.uniform(0, 0.4, 300), rng.uniform(0, 0.3, 300), np.full(300, 0.5)]
+    line = np.c_[np.linspace(1, 1.5, 200), np.full(200, 0.2), np.full(200, 0.3)]
+    pts = np.vstack([flat, line])
+    props = {"x": pts[:, 0], "y": pts[:, 1], "z": pts[:, 2], "object_id": np.full(len(pts), 4),
+             "part_id": np.r_[np.full(300, 41), np.full(200, 42)]}
+    labels = [{"id": 4, "category": "table", "parts": [{"id": 41, "label": "top"}, {"id": 42, "label": "leg"}]}]
+    rec = reconstruct_scan(scan_from_arrays(props, labels))
+    text = "\n".join(rec.warnings)
+    assert "object 4 (table) part 41 (top): its points are flat" in text
+    assert "object 4 (table) part 42 (leg): its points are collinear" in text
+    sizes = {p.part_id: np.sort(p.primitive.size) for p in rec.object(4).parts}
+    assert sizes[41][0] == pytest.approx(rec.config.min_thickness) and sizes[41][2] == pytest.approx(0.4, abs=0.02)
