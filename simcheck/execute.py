@@ -266,32 +266,46 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
         wall_time=time.perf_counter() - t0)
 
 
+def _targets(seg: PlannedSegment, vmax: np.ndarray, config: PhysicsConfig):
+    """Every control step's robot target along ``seg``: (step numbers k (m,), q (m, dof), qd (m, dof),
+    planned tool position (m, 3) or None, planned object q (m,) or None), and the step count.
+
+    The segment is time-parametrised by :func:`timed_waypoints`; targets are linear interpolations between
+    waypoints at t = k * time_step for the steps k that send a command (every ``control_every``-th, from 1).
+    """
+    times = timed_waypoints(seg.q, vmax, config.time_step)
+    n_steps = int(np.ceil(times[-1] / config.time_step))
+    k = np.arange(1, n_steps + 1, config.control_every)
+    tool = seg.T_world_tool[:, :3, 3] if seg.T_world_tool is not None else None
+    if len(times) == 1:
+        q = np.repeat(seg.q[:1], len(k), axis=0)
+        qd = np.zeros_like(q)
+        return k, q, qd, None, None, n_steps
+    tk = np.minimum(k * config.time_step, times[-1])
+    j = np.clip(np.searchsorted(times, tk, side="right") - 1, 0, len(times) - 2)
+    span = times[j + 1] - times[j]
+    a = ((tk - times[j]) / span)[:, None]
+    q = (1 - a) * seg.q[j] + a * seg.q[j + 1]
+    qd = (seg.q[j + 1] - seg.q[j]) / span[:, None]
+    tool_k = (1 - a) * tool[j] + a * tool[j + 1] if tool is not None else None
+    obj_k = ((1 - a[:, 0]) * seg.object_q[j] + a[:, 0] * seg.object_q[j + 1]) if seg.object_q is not None else None
+    return k, q, qd, tool_k, obj_k, n_steps
+
+
 def _follow(world: World, rec: _Recorder, seg: PlannedSegment, vmax: np.ndarray, config: PhysicsConfig,
             on_step) -> np.ndarray:
     """Drive the robot along ``seg`` (time-parametrised), then hold ``settle_time``; returns the last q."""
-    times = timed_waypoints(seg.q, vmax, config.time_step)
-    n_steps = int(np.ceil(times[-1] / config.time_step))
+    ks, q, qd, tool_k, obj_k, n_steps = _targets(seg, vmax, config)
     tool = seg.T_world_tool[:, :3, 3] if seg.T_world_tool is not None else None
+    i = 0
     for k in range(1, n_steps + 1):
-        if (k - 1) % config.control_every:
-            world.step()
-            rec.after_step()
-            on_step()
-            continue
-        tk = min(k * config.time_step, times[-1])
-        j = int(np.clip(np.searchsorted(times, tk, side="right") - 1, 0, len(times) - 2)) if len(times) > 1 else 0
-        if len(times) > 1:
-            span = times[j + 1] - times[j]
-            a = (tk - times[j]) / span
-            q = (1 - a) * seg.q[j] + a * seg.q[j + 1]
-            qd = (seg.q[j + 1] - seg.q[j]) / span
-            if tool is not None:
-                rec.planned_tool = (1 - a) * tool[j] + a * tool[j + 1]
-            if seg.object_q is not None:
-                rec.planned_object_q = float((1 - a) * seg.object_q[j] + a * seg.object_q[j + 1])
-        else:
-            q, qd = seg.q[0], np.zeros(seg.q.shape[1])
-        world.command_robot(q, qd)
+        if i < len(ks) and ks[i] == k:
+            if tool_k is not None:
+                rec.planned_tool = tool_k[i]
+            if obj_k is not None:
+                rec.planned_object_q = float(obj_k[i])
+            world.command_robot(q[i], qd[i])
+            i += 1
         world.step()
         rec.after_step()
         on_step()

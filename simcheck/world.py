@@ -84,10 +84,16 @@ class ContactPoint:
 
 
 def _T_from_pos_quat(pos, quat_xyzw) -> np.ndarray:
-    T = np.eye(4)
-    T[:3, :3] = np.asarray(pb.getMatrixFromQuaternion(quat_xyzw), dtype=float).reshape(3, 3)
-    T[:3, 3] = pos
-    return T
+    """(4, 4) transform from a position (3,) and a unit quaternion (x, y, z, w) (PyBullet's order).
+
+    Plain Python arithmetic: called several times per physics step, where numpy's per-call overhead
+    would dominate a 3x3 product."""
+    x, y, z, w = quat_xyzw
+    xx, yy, zz, xy, xz, yz, wx, wy, wz = x * x, y * y, z * z, x * y, x * z, y * z, w * x, w * y, w * z
+    return np.array([[1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy), pos[0]],
+                     [2 * (xy + wz), 1 - 2 * (xx + zz), 2 * (yz - wx), pos[1]],
+                     [2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy), pos[2]],
+                     [0.0, 0.0, 0.0, 1.0]])
 
 
 def _quat_xyzw_from_R(R: np.ndarray) -> tuple[float, float, float, float]:
@@ -234,6 +240,10 @@ class World:
         self._forces = [max(self._robot_joints[n].max_force, 1.0) for n in robot.joint_names]
         self._finger_idx = {self._robot_links[n] for n in robot.finger_links}
         self._base_idx = {self._robot_links[n] for n in robot.base_links} | {-1}
+        for link in self._base_idx:
+            # a mobile base stands on the floor: those contacts are never reported (robot_contacts) and
+            # only add friction rows for the base motors to fight every step
+            pb.setCollisionFilterPair(body, self.floor, link, -1, 0, physicsClientId=self.client)
         return body
 
     def _index(self, body: int) -> tuple[dict[str, JointInfo], dict[str, int]]:
