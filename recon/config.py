@@ -59,7 +59,7 @@ class ReconConfig:
     """Weight of the scan-to-primitive mean distance added to the Eq. 3 score, so that leaving
     unobserved faces out can never reward a primitive that does not explain the points."""
     small_part_points: int = 400
-    """Parts with fewer points also get candidates aligned with their object's base part (their own
+    """Parts with fewer points get only candidates aligned with their object's base part (their own
     bounding box is too noisy to orient them)."""
     box_preference: float = 0.1
     """A cylinder or sphere wins only if its score is lower than the best box's by this fraction."""

@@ -83,21 +83,23 @@ def candidate_primitives(points: np.ndarray, config: ReconConfig,
                          normals: np.ndarray | None = None) -> dict[str, Primitive]:
     """Candidate primitives scaled from the minimum-volume oriented box of ``points`` (n, 3).
 
-    With ``R_world_ref`` (3, 3) — the axes of the object's base part — the same templates are also
-    built from the box aligned with those axes (names suffixed ``@ref``): small parts (knobs, handles)
-    have too few points for a reliable box orientation of their own.
+    With ``R_world_ref`` (3, 3) — the axes of the object's base part — the templates are built only
+    from the box aligned with those axes (names suffixed ``@ref``): small parts (knobs, handles) have
+    too few points for a reliable orientation of their own.
     """
     T, ext = oriented_box(points, min_thickness=config.min_thickness,
                           upright_tolerance=config.upright_tolerance)
+    if R_world_ref is not None:
+        # a small part (knob, handle) has too few points to orient itself: parts of man-made objects
+        # are aligned with their base part, so only the base-aligned templates are tried
+        Tr, er = _box_in_frame(points, R_world_ref, config.min_thickness)
+        return {f"{k}@ref": v for k, v in _templates(points, Tr, er, config).items()}
     out = _templates(points, T, ext, config)
     yaw = None if normals is None else dominant_yaw(normals)
     if yaw is not None:
         # noise moves a minimum-area rectangle's corners; the faces' normals hold the yaw better
         Ty, ey = _box_in_frame(points, _yaw_frame(yaw), config.min_thickness)
         out["box@yaw"] = Primitive(PrimitiveKind.BOX, ey, Ty)
-    if R_world_ref is not None:
-        Tr, er = _box_in_frame(points, R_world_ref, config.min_thickness)
-        out.update({f"{k}@ref": v for k, v in _templates(points, Tr, er, config).items()})
     return out
 
 

@@ -36,7 +36,7 @@ _BY_LABEL = {
     "top": JointTemplate(JointType.FIXED, frozenset({"leg", "body", "frame", "base"})),
     "seat": JointTemplate(JointType.FIXED, frozenset({"leg", "frame", "base", "body"})),
     "back": JointTemplate(JointType.FIXED, frozenset({"seat", "frame"})),
-    "arm": JointTemplate(JointType.FIXED, frozenset({"seat", "back", "frame"})),
+    "arm": JointTemplate(JointType.FIXED, frozenset({"seat", "frame"})),
     "headboard": JointTemplate(JointType.FIXED, frozenset({"frame"})),
     "mattress": JointTemplate(JointType.FIXED, frozenset({"frame"})),
     "shelf": JointTemplate(JointType.FIXED, frozenset({"body", "frame"})),
