@@ -405,7 +405,9 @@ def main(argv: list[str] | None = None) -> int:
     results = targets(cases, presets)
     _print_table("Issue targets", ["target", "met", "evidence"],
                  [[t, "MET" if ok else "MISSED", ev] for t, ok, ev in results])
-    print(f"\n{len(cases)} cases in {time.perf_counter() - t_all:.0f} s")
+    load = ", ".join(f"{x:.1f}" for x in os.getloadavg())
+    print(f"\n{len(cases)} cases in {time.perf_counter() - t_all:.0f} s; load average now {load} on "
+          f"{os.cpu_count()} CPUs (timings are wall clock on a shared machine)")
     if args.json:
         _write_json_atomic(Path(args.json), _json_doc(cases))
     return 0 if all(ok for _, ok, _ in results) else 1
