@@ -67,7 +67,7 @@ def contact_edge(parent_id: int, parent_planes: tuple[SurfacePlane, ...], child_
     pairs = contact_pairs(parent_planes, child_planes, config)
     if not pairs:
         return None
-    i, j, cont, align, dist = min(pairs, key=lambda t: (-round(t[2], 6), t[4]))
+    i, j, cont, align, dist = min(pairs, key=lambda t: (-round(t[2], 3), t[4]))
     return ContactEdge(int(parent_id), int(child_id), cont, align, dist, i, j)
 
 

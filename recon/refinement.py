@@ -75,7 +75,7 @@ def refine_parts(prims: dict[int, Primitive], tree: PartTree,
                               out[c].planes(config.cylinder_side_faces), config)
         if not pairs:
             continue
-        pairs.sort(key=lambda t: (-t[2], t[4]))
+        pairs.sort(key=lambda t: (-round(t[2], 3), t[4]))     # equal Cont: the closer pair
         best = pairs[0]
         rivals = [t for t in pairs[1:] if t[2] >= best[2] - config.snap_ambiguity
                   and abs(abs(float(out[p].planes(config.cylinder_side_faces)[t[0]].normal
