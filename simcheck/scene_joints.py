@@ -1,18 +1,18 @@
-"""Movable joints of a scene URDF read with the standard library (no simulator): type, limits, and the
-axis and origin in the world frame at the closed (all-zero) state. Used to validate tasks, compute
+"""Joints of a scene URDF (read by :func:`planners.scene_urdf.read_scene_urdf`, no simulator): type, limits,
+and the axis and origin in the world frame at the closed (all-zero) state. Used to validate tasks, compute
 default amounts and to say how an estimate differs from its reference.
 """
 
 from __future__ import annotations
 
 import math
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
+from planners.scene_urdf import SceneDescription, read_scene_urdf
+from planners.errors import SceneURDFError
 from simcheck.errors import SceneLoadError
 
 __all__ = ["SceneJoint", "read_scene_joints", "scene_link_names"]
@@ -40,87 +40,34 @@ class SceneJoint:
         return "m" if self.type == "prismatic" else "rad"
 
 
-def _floats(text: str | None, n: int, default: float, where: str) -> np.ndarray:
-    if text is None:
-        return np.full(n, default)
-    try:
-        v = np.array([float(t) for t in text.split()])
-    except ValueError:
-        raise SceneLoadError(f"{where}: not numbers: {text!r}") from None
-    if v.shape != (n,):
-        raise SceneLoadError(f"{where}: expected {n} numbers, got {text!r}")
-    return v
-
-
-def _parse(path: Path) -> ET.Element:
-    if not path.is_file():
+def _read(path: str | Path) -> SceneDescription:
+    if not Path(path).is_file():
         raise SceneLoadError(f"scene URDF {path} does not exist")
     try:
-        root = ET.parse(path).getroot()
-    except ET.ParseError as exc:
-        raise SceneLoadError(f"scene URDF {path} is not valid XML: {exc}") from exc
-    if root.tag != "robot":
-        raise SceneLoadError(f"scene URDF {path}: root element is <{root.tag}>, expected <robot>")
-    return root
+        return read_scene_urdf(path)
+    except SceneURDFError as exc:
+        raise SceneLoadError(str(exc)) from exc
 
 
 def scene_link_names(path: str | Path) -> tuple[str, ...]:
     """Names of every ``<link>`` of the URDF at ``path``."""
-    return tuple(l.get("name") for l in _parse(Path(path)).findall("link"))
+    return tuple(_read(path).links)
 
 
 def read_scene_joints(path: str | Path) -> dict[str, SceneJoint]:
-    """Every joint of the scene URDF at ``path``, by name.
+    """Every joint of the scene URDF at ``path``, by name, with its axis and origin in the world frame.
 
     Raises:
         SceneLoadError: missing file, invalid XML, a joint without parent/child/name, a link with two
-            parents, or a kinematic loop (names the file and the joint).
+            parents, or no single root (names the file and the joint).
     """
-    path = Path(path)
-    root = _parse(path)
-    raw = {}
-    child_of = {}
-    for j in root.findall("joint"):
-        name = j.get("name")
-        parent, child = j.find("parent"), j.find("child")
-        if not name or parent is None or child is None or not parent.get("link") or not child.get("link"):
-            raise SceneLoadError(f"scene URDF {path}: joint {name!r} lacks a name, parent link or child link")
-        where = f"scene URDF {path}, joint {name!r}"
-        o = j.find("origin")
-        xyz = _floats(o.get("xyz") if o is not None else None, 3, 0.0, where + " origin xyz")
-        rpy = _floats(o.get("rpy") if o is not None else None, 3, 0.0, where + " origin rpy")
-        a = j.find("axis")
-        axis = _floats(a.get("xyz") if a is not None else None, 3, 0.0, where + " axis") if a is not None else np.array([1.0, 0, 0])
-        lim = j.find("limit")
-        lower = float(lim.get("lower", 0.0)) if lim is not None else 0.0
-        upper = float(lim.get("upper", 0.0)) if lim is not None else 0.0
-        jtype = j.get("type", "")
-        if jtype in ("prismatic", "revolute") and not np.linalg.norm(axis) > 0:
-            raise SceneLoadError(f"{where}: zero axis")
-        if child.get("link") in child_of:
-            raise SceneLoadError(f"scene URDF {path}: link {child.get('link')!r} has two parent joints "
-                                 f"({child_of[child.get('link')]!r} and {name!r})")
-        child_of[child.get("link")] = name
-        T = np.eye(4)
-        T[:3, :3] = Rotation.from_euler("xyz", rpy).as_matrix()
-        T[:3, 3] = xyz
-        raw[name] = (jtype, parent.get("link"), child.get("link"), lower, upper, axis / max(np.linalg.norm(axis), 1e-12), T)
-    cache: dict[str, np.ndarray] = {}
-
-    def T_world(link: str, depth: int = 0) -> np.ndarray:
-        if link in cache:
-            return cache[link]
-        if depth > len(raw) + 1:
-            raise SceneLoadError(f"scene URDF {path}: kinematic loop through link {link!r}")
-        jn = child_of.get(link)
-        T = np.eye(4) if jn is None else T_world(raw[jn][1], depth + 1) @ raw[jn][6]
-        cache[link] = T
-        return T
-
+    scene = _read(path)
     out = {}
-    for name, (jtype, parent, child, lower, upper, axis, T_parent_joint) in raw.items():
-        T = T_world(parent) @ T_parent_joint
-        out[name] = SceneJoint(name, jtype, parent, child, lower, upper, T[:3, :3] @ axis, T[:3, 3].copy())
+    for name, j in scene.joints.items():
+        T_world_joint = scene.T_world_link(j.parent) @ j.T_parent_joint
+        out[name] = SceneJoint(name, j.type, j.parent, j.child,
+                               j.lower if np.isfinite(j.lower) else 0.0, j.upper if np.isfinite(j.upper) else 0.0,
+                               T_world_joint[:3, :3] @ j.axis, T_world_joint[:3, 3].copy())
     return out
 
 

@@ -44,7 +44,7 @@ def test_broken_urdf_exits_2_in_a_subprocess(tmp_path):
     broken = tmp_path / "broken.urdf"
     broken.write_text("<robot name='x'><link name='a'>")
     p = _cli("certify", broken, "--task", "open-drawer:j", cwd=tmp_path)
-    assert p.returncode == 2 and "broken.urdf is not valid XML" in p.stderr, p.stderr
+    assert p.returncode == 2 and "broken.urdf: not valid XML" in p.stderr, p.stderr
 
 
 @pytest.mark.parametrize("argv, message", [
