@@ -21,6 +21,7 @@ result, shown in the report and on stdout); 1 = a stage failed or was unavailabl
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import enum
 import json
 import logging
@@ -193,14 +194,15 @@ def metrics_doc(scene_metrics, summary) -> dict:
     ``summary``: scene means (Chamfer in the unit box, voxel IoU, kinematic mAP over objects) and the
     pooled joint summary; ``objects``: one row per true object; ``joints``: one row per true movable joint.
     """
+    from recon.metrics import mean_average_precision
+
     objs = scene_metrics.objects
-    aps = [o.ap for o in objs if np.isfinite(o.ap)]
     doc = {"format": "partscene.metrics/1", "scene": scene_metrics.scene,
            "summary": {"chamfer": _finite_or_none(scene_metrics.chamfer), "iou": _finite_or_none(scene_metrics.iou),
-                       "kinematic_map": _finite_or_none(float(np.mean(aps)) if aps else float("nan")),
+                       "kinematic_map": _finite_or_none(mean_average_precision(o.ap for o in objs)),
                        "missing_objects": int(scene_metrics.missing)},
            "objects": [], "joints": []}
-    for field_name, value in summary.__dict__.items():
+    for field_name, value in dataclasses.asdict(summary).items():
         doc["summary"][field_name] = value if isinstance(value, int) else _finite_or_none(value)
     for o in objs:
         doc["objects"].append({"name": o.name, "category": o.category, "status": o.status.value,
