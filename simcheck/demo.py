@@ -56,7 +56,7 @@ class DemoConfig:
     scene: str = "kitchen"
     seed: int = 0
     preset: str = "realistic"
-    max_drawers: int = 2
+    max_drawers: int = 3
     max_doors: int = 3
 
 
