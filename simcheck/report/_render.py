@@ -56,7 +56,7 @@ def _scan_section(lay: DemoLayout, azim: float) -> str:
                "scan")
 
 
-def _scene_section(lay: DemoLayout, truth: dict | None) -> str:
+def _scene_section(lay: DemoLayout, truth: dict | None, graph: dict | None) -> str:
     panels = []
     if lay.scene_urdf.exists():
         panels.append(("reconstruction (scene.urdf)", solids_from_urdf(lay.scene_urdf)))
@@ -69,6 +69,11 @@ def _scene_section(lay: DemoLayout, truth: dict | None) -> str:
                "coloured by part label, in the state the scan saw.", "scene")
     if not lay.scene_urdf.exists():
         body = _missing("the reconstruction", lay.scene_urdf) + body
+    warnings = graph.get("warnings") if isinstance(graph, Mapping) else None
+    if isinstance(warnings, list) and warnings:
+        items = "".join(f"<li>{esc(w)}</li>" for w in warnings)
+        body += (f"<details><summary>{len(warnings)} reconstruction warnings (graph.json)</summary>"
+                 f"<ul>{items}</ul></details>")
     return body
 
 
@@ -126,7 +131,11 @@ def _tasks_section(lay: DemoLayout, cert: dict | None) -> str:
         if not figs:
             figs = note(f"No recorded rollout for {key} (the task was not executed).", "info")
         parts.append(f'<div class="task" id="task-{esc(key)}">{head}{criteria_table(key, criteria)}{figs}</div>')
-    summary = table(["task", "status", "failed criteria"],
+    where = (f"<p>Each task was planned on <code>{esc(Path(str(cert.get('scene', '?'))).name)}</code>"
+             + (f" and executed with physics on <code>{esc(Path(str(cert['against'])).name)}</code> "
+                "(the reference: joints matched by name)" if cert.get("against") else " and executed on it")
+             + f", robot <code>{esc(Path(str(cert.get('robot', '?'))).name)}</code>.</p>")
+    summary = where + table(["task", "status", "failed criteria"],
                     [[f'<a href="#task-{esc(_task_key(t, i))}">{esc(t.get("kind", ""))}:{esc(_task_key(t, i))}</a>',
                       badge(str(t.get("status", "?")), t.get("status") == "certified"),
                       esc(", ".join(c.get("name", "?") for c in t.get("criteria", [])
@@ -177,7 +186,7 @@ def render_report(demo_dir: str | os.PathLike, out_html: str | os.PathLike | Non
         sections.append(("pipeline", "Pipeline", pipeline_table(demo.get("stages", []))))
     sections += [
         ("scan", "1. The scan, coloured by part", _scan_section(lay, view_azimuth(truth))),
-        ("scene", "2. Reconstruction beside truth", _scene_section(lay, truth)),
+        ("scene", "2. Reconstruction beside truth", _scene_section(lay, truth, graph)),
         ("trees", "3. Part trees and joints", _tree_section(lay, graph, truth)),
         ("metrics", "4. Reconstruction metrics",
          metrics_table(metrics) if metrics is not None else _missing("the metrics", lay.metrics_json)),

@@ -270,5 +270,6 @@ def test_part_tree_rejects_a_joint_naming_a_missing_part():
     doc = {"objects": [{"name": "cabinet3", "parts": [{"id": 11, "label": "body"}],
                         "joints": [{"name": "cabinet3_drawer12_joint", "type": "prismatic", "parent_part_id": 11,
                                     "child_part_id": 12}]}]}
-    with pytest.raises(ArtifactError, match=r"graph\.json: object cabinet3: joint 'cabinet3_drawer12_joint' names part 12"):
+    with pytest.raises(ArtifactError,
+                       match=r"graph\.json: object cabinet3: joint 'cabinet3_drawer12_joint' names part 12"):
         trees_from_scene_json(doc, "graph.json")
