@@ -88,10 +88,13 @@ class _Recorder:
         self.T_handle_grasp: np.ndarray | None = None
         self.sample_callback = None
 
-    def grasp_point(self) -> np.ndarray:
+    def grasp_point(self, T_world_handle: np.ndarray | None = None) -> np.ndarray:
+        """(3,) world position of the grasped point of the handle (NaN when not attached);
+        ``T_world_handle`` (4, 4) when the caller already has it."""
         if self.T_handle_grasp is None or not self.world.attached:
             return np.full(3, np.nan)
-        return (self.world.scene_link_pose(self.handle) @ self.T_handle_grasp)[:3, 3]
+        T = self.world.scene_link_pose(self.handle) if T_world_handle is None else T_world_handle
+        return T[:3, :3] @ self.T_handle_grasp[:3, 3] + T[:3, 3]
 
     def after_step(self) -> None:
         w = self.world
@@ -117,9 +120,10 @@ class _Recorder:
         r["robot_q"].append(w.robot_q())
         r["object_q"].append(q)
         r["object_qd"].append(qd)
-        r["T_world_handle"].append(w.scene_link_pose(self.handle))
-        r["tool_pos"].append(w.robot_link_pose(w.robot_spec.tool_link)[:3, 3])
-        r["grasp_point"].append(self.grasp_point())
+        T_handle = w.scene_link_pose(self.handle)
+        r["T_world_handle"].append(T_handle)
+        r["tool_pos"].append(w.robot_link_position(w.robot_spec.tool_link))
+        r["grasp_point"].append(self.grasp_point(T_handle))
         r["planned_tool_pos"].append(np.array(self.planned_tool, dtype=float))
         r["planned_object_q"].append(self.planned_object_q)
         r["link_speed"].append(float(np.linalg.norm(v)))
@@ -186,8 +190,7 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
 
     def check_slip() -> None:
         if rec.steps % config.contact_every == 0 and world.attached and rec.T_handle_grasp is not None:
-            tool = world.robot_link_pose(robot.tool_link)[:3, 3]
-            slip = float(np.linalg.norm(rec.grasp_point() - tool))
+            slip = float(np.linalg.norm(rec.grasp_point() - world.robot_link_position(robot.tool_link)))
             if slip > config.grasp_break_distance:
                 world.detach()
                 notes.append(f"grasp torn off at t={rec.t:.2f} s: the handle lagged the tool by {slip:.3f} m "

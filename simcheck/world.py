@@ -495,6 +495,14 @@ class World:
         """T_world_link (4, 4) of robot link ``link`` (its URDF link frame)."""
         return self._link_pose(self.robot, self._robot_links[link])
 
+    def robot_link_position(self, link: str) -> np.ndarray:
+        """(3,) world position of robot link ``link``'s URDF frame, metres (cheaper than the pose)."""
+        index = self._robot_links[link]
+        if index == -1:
+            return self.robot_link_pose(link)[:3, 3]
+        return np.array(pb.getLinkState(self.robot, index, computeForwardKinematics=1,
+                                        physicsClientId=self.client)[4])
+
     def _scene_link_index(self, link: str) -> tuple[int, int]:
         """(body, link index) of scene link ``link``."""
         try:
