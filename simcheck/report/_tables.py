@@ -53,6 +53,7 @@ METRIC_MEANINGS = {
     "missing_objects": "true objects without a reconstruction",
     "n_joints": "true joints compared (fixed included)",
     "type_accuracy": "fraction of true joints whose estimated type is right",
+    "parent_accuracy": "fraction of true joints whose estimated parent part is right",
     "n_movable": "true prismatic / revolute joints",
     "median_axis_error_deg": "median angle between true and estimated axis (sign-aware), degrees",
     "median_axis_error_unsigned_deg": "same, ignoring the axis sign, degrees",
@@ -85,7 +86,8 @@ def metrics_table(metrics: Mapping) -> str:
         "metrics")
     jcols = ("axis_error_deg", "hinge_distance_m", "upper_error")
     out += "<h3>Movable joints</h3>" + table(
-        ["joint", "true type", "estimated type", "axis error (deg)", "hinge distance (m)", "range error"],
+        ["joint", "true type", "estimated type", "axis error (deg)", "hinge distance (m)",
+         "range error (m or rad)"],
         [[f"<code>{esc(j.get('name'))}</code>", esc(j.get("true_type", "")), esc(j.get("est_type", "") or "missing")]
          + [num(j.get(c), f"metrics.joints.{j.get('name')}.{c}") for c in jcols] for j in metrics.get("joints", [])],
         "metrics")
