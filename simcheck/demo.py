@@ -364,13 +364,14 @@ _REASON_CHARS = 160
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    p = argparse.ArgumentParser(prog="python -m simcheck.demo", description=__doc__.split("\n")[0])
+    p = argparse.ArgumentParser(prog="python -m simcheck.demo",
+                                description="Make, scan, reconstruct and certify a built-in scene; write report.html.")
     p.add_argument("--out", default="out/demo", help="output directory (default: out/demo)")
     p.add_argument("--scene", default=DemoConfig.scene, help="built-in scene (default: kitchen)")
-    p.add_argument("--seed", type=int, default=DemoConfig.seed)
+    p.add_argument("--seed", type=int, default=DemoConfig.seed, help="scene, scan, recon and planning seed")
     p.add_argument("--preset", default=DemoConfig.preset, help="scanner preset (default: realistic)")
-    p.add_argument("--max-drawers", type=int, default=DemoConfig.max_drawers)
-    p.add_argument("--max-doors", type=int, default=DemoConfig.max_doors)
+    p.add_argument("--max-drawers", type=int, default=DemoConfig.max_drawers, help="at most this many drawer tasks")
+    p.add_argument("--max-doors", type=int, default=DemoConfig.max_doors, help="at most this many door tasks")
     p.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     p.add_argument("-q", "--quiet", action="store_true", help="warnings only")
     args = p.parse_args(argv)

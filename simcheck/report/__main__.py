@@ -26,7 +26,8 @@ def _write_atomic(path: Path, data: bytes) -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    p = argparse.ArgumentParser(prog="python -m simcheck.report", description=__doc__.split("\n")[0])
+    p = argparse.ArgumentParser(prog="python -m simcheck.report",
+                                description="(Re-)render a demo directory's report.html from its artifacts.")
     p.add_argument("demo_dir", help="a directory written by python -m simcheck.demo")
     p.add_argument("--out", help="where to write the report (default: DEMO_DIR/report.html)")
     p.add_argument("--teaser", help="also write the one-picture summary PNG here")
