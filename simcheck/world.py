@@ -5,7 +5,7 @@ a floor plane, the scene and the robot URDF with a fixed base at the world origi
 modelled by the robot's base joints). The scene is loaded as separate bodies, not as one multibody: each
 never-moving link is a static single-link body and each articulated subtree (a drawer or door with its
 handle) a small fixed-base body (:func:`_split_scene`); Bullet then neither integrates nor collides
-static parts with each other, which makes a step in a furnished room ~1.3x cheaper. Link and joint names are kept
+static parts with each other (kitchen seed 0: execution 1.2x faster than with one multibody). Link and joint names are kept
 (a name map inside this module). On load it
 
 * disables the default velocity motors PyBullet puts on every scene joint (they lock drawers and
