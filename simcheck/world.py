@@ -5,8 +5,8 @@ a floor plane, the scene and the robot URDF with a fixed base at the world origi
 modelled by the robot's base joints). The scene is loaded as separate bodies, not as one multibody: each
 never-moving link is a static single-link body and each articulated subtree (a drawer or door with its
 handle) a small fixed-base body (:func:`_split_scene`); Bullet then neither integrates nor collides
-static parts with each other (kitchen seed 0: execution 1.2x faster than with one multibody). Link and joint names are kept
-(a name map inside this module). On load it
+static parts with each other (kitchen seed 0: execution 1.2x faster than with one multibody). Link and
+joint names are kept (a name map inside this module). On load it
 
 * disables the default velocity motors PyBullet puts on every scene joint (they lock drawers and
   doors) and replaces them with a zero-velocity motor whose force is the joint's Coulomb friction
