@@ -2,7 +2,7 @@
 
 How the robot is driven: every segment's waypoints are time-parametrised so that no joint exceeds
 ``speed_scale`` x its URDF velocity limit (capped at ``max_joint_speed``; the opening segment is slower
-by ``open_speed_scale``); at every 240 Hz physics step the robot's joints get a position target and a
+by ``open_speed_scale``); at every physics step (160 Hz) the robot's joints get a position target and a
 feed-forward velocity (PyBullet position control with the joints' URDF effort limits). The scene's joints
 are never set during a task: the object moves only because the robot pushes or pulls it.
 
