@@ -36,7 +36,24 @@ from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
 from simcheck.errors import RobotBindingError, SceneLoadError, TaskSpecError
 from simcheck.robot_binding import SimRobot
 
-import pybullet as pb
+
+def _import_pybullet_quietly():
+    """Import pybullet with its C-level "pybullet build time" banner (written to fd 1/2) discarded."""
+    saved = [os.dup(fd) for fd in (1, 2)]
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        for fd in (1, 2):
+            os.dup2(devnull, fd)
+        import pybullet
+        return pybullet
+    finally:
+        for fd, keep in zip((1, 2), saved):
+            os.dup2(keep, fd)
+            os.close(keep)
+        os.close(devnull)
+
+
+pb = _import_pybullet_quietly()
 
 __all__ = ["World", "JointInfo", "ContactPoint", "display_available", "pybullet_version"]
 
