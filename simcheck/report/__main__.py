@@ -5,24 +5,15 @@ from __future__ import annotations
 
 import argparse
 import logging
-import os
 import sys
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
+
+from scenes.atomic_write import write_bytes_atomic
 
 from ._errors import ReportError
 from ._render import render_report
 from ._teaser import png_of_teaser
-
-
-def _write_atomic(path: Path, data: bytes) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}-")
-    with os.fdopen(fd, "wb") as fh:
-        fh.write(data)
-    os.chmod(tmp, 0o644)
-    os.replace(tmp, path)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -40,7 +31,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         path = render_report(args.demo_dir, args.out)
         if args.teaser:
-            _write_atomic(Path(args.teaser), png_of_teaser(args.demo_dir))
+            write_bytes_atomic(Path(args.teaser), png_of_teaser(args.demo_dir))
     except ReportError as exc:
         print(f"simcheck.report: {exc}", file=sys.stderr)
         return 2

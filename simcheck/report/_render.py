@@ -10,10 +10,11 @@ from __future__ import annotations
 import json
 import logging
 import os
-import tempfile
 import time
 from collections.abc import Mapping
 from pathlib import Path
+
+from scenes.atomic_write import write_text_atomic
 
 from ._errors import ArtifactError
 from ._html import badge, esc, img, note, num, page, section, table
@@ -202,12 +203,7 @@ def render_report(demo_dir: str | os.PathLike, out_html: str | os.PathLike | Non
     lead = _lead(cert)
     html = page(title, lead, [(a, t) for a, t, _ in sections],
                 "".join(section(a, t, b) for a, t, b in sections))
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=".report-", suffix=".html")
-    with os.fdopen(fd, "w", encoding="utf-8") as fh:
-        fh.write(html)
-    os.chmod(tmp, 0o644)  # mkstemp makes it private; a report is for reading
-    os.replace(tmp, out)
+    write_text_atomic(out, html)
     log.info("report: wrote %s (%.0f kB) in %.1f s", out, out.stat().st_size / 1e3, time.perf_counter() - t0)
     return out
 
