@@ -11,6 +11,10 @@ Handles and knobs lose their thin stems the same way (a knob's stem is a few poi
 mounted part is extended backwards, along its axis nearest the plane's normal, onto the face of a
 drawer/door (else any part) that it stands in front of, when that face is within ``completion_reach``
 (a bar handle lying along the face becomes the box enveloping it and its hidden posts).
+A leg the camera hardly saw at all (under a bed frame: fewer than ``min_part_points`` points, maybe
+none) is still declared in labels.json; a bed, table or chair with three fitted corner legs has a
+fourth, so the missing one is placed at the fourth corner of the rectangle the three span, as a copy
+of the leg diagonally opposite it (``complete_missing_legs``).
 Nothing else is changed.
 """
 
@@ -22,11 +26,16 @@ import shapely
 from recon.config import ReconConfig
 from recon.primitive import Primitive, PrimitiveKind
 
-__all__ = ["VERTICAL_SPAN_LABELS", "MOUNTED_LABELS", "complete_vertical_parts", "complete_mounted_parts"]
+__all__ = ["VERTICAL_SPAN_LABELS", "MOUNTED_LABELS", "LEGGED_CATEGORIES", "complete_vertical_parts",
+           "complete_mounted_parts", "complete_missing_legs"]
 
 VERTICAL_SPAN_LABELS = frozenset({"leg"})
 MOUNTED_LABELS = frozenset({"handle", "knob"})
 _MOUNTS = frozenset({"drawer", "door"})
+LEGGED_CATEGORIES = frozenset({"bed", "table", "chair"})
+"""Categories whose template stands on four legs at the corners of a rectangle."""
+_RIGHT_ANGLE_COS = 0.15
+"""Three leg centres span a rectangle's corner when the angle at one of them is within ~9° of 90°."""
 
 
 def _extended(prim: Primitive, k: int, direction: np.ndarray, amount: float) -> Primitive:
@@ -133,3 +142,41 @@ def complete_vertical_parts(prims: dict[int, Primitive], labels: dict[int, str],
         out[i] = Primitive(prim.kind, size, T)
         changes[i] = (bottom - new_bottom, new_top - top)
     return out, changes
+
+
+def complete_missing_legs(category: str, prims: dict[int, Primitive], labels: dict[int, str],
+                          skipped, config: ReconConfig) -> tuple[dict[int, Primitive], dict[int, np.ndarray]]:
+    """Place the fourth leg of a four-legged object whose camera missed it.
+
+    prims : {part_id: fitted primitive}; labels : {part_id: label} of the fitted parts
+    skipped : the object's parts with too few points to fit (:attr:`recon.scan.ObjectPoints.skipped`)
+    Applies when the category stands on four legs, exactly three legs are fitted and exactly one leg is
+    skipped, the three centres span a right angle (within ``_RIGHT_ANGLE_COS``), and the skipped leg's
+    points (if it has any) lie within ``completion_reach`` (m) of the fourth corner.
+    Returns (prims with the placed leg added, {part_id: (3,) world centre of each placed leg}).
+    """
+    legs = [i for i, lab in labels.items() if lab == "leg"]
+    missing = [p for p in skipped if p.label == "leg"]
+    if category not in LEGGED_CATEGORIES or len(legs) != 3 or len(missing) != 1:
+        return dict(prims), {}
+    c = {i: prims[i].center for i in legs}
+    best = None
+    for b in legs:
+        a, d = [i for i in legs if i != b]
+        u, v = c[a][:2] - c[b][:2], c[d][:2] - c[b][:2]
+        cos = abs(float(u @ v)) / max(float(np.linalg.norm(u) * np.linalg.norm(v)), 1e-9)
+        if best is None or cos < best[0]:
+            best = (cos, a, b, d)
+    cos, a, b, d = best
+    if cos > _RIGHT_ANGLE_COS:
+        return dict(prims), {}
+    corner = c[a] + c[d] - c[b]
+    corner[2] = c[b][2]
+    leg = missing[0]
+    if len(leg.points) and np.linalg.norm(leg.points.mean(axis=0)[:2] - corner[:2]) > config.completion_reach:
+        return dict(prims), {}
+    T = prims[b].T_world_part.copy()
+    T[:3, 3] = corner
+    out = dict(prims)
+    out[leg.part_id] = Primitive(prims[b].kind, prims[b].size, T)
+    return out, {leg.part_id: corner}

@@ -48,6 +48,9 @@ class ReconConfig:
     """Only candidates whose unaligned score is within this factor of the best one are ICP-aligned."""
     noise_floor: float = 0.003
     """Depth noise (m, robust σ across a box's best-seen face) below which extents are not corrected."""
+    edge_tail_fraction: float = 0.02
+    """Fraction of a box's points at each end of its best-seen axis that decide whether that end is a
+    noise tail (pulled in by the noise correction) or a rim of side faces (kept)."""
     min_face_points: int = 12
     """The opposite face needs this many points (and a fifth of the best face's) to join a noise estimate."""
     coverage_distance: float = 0.02

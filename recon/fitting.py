@@ -163,7 +163,8 @@ def _mad_sigma(r: np.ndarray) -> float:
     return 1.4826 * float(np.median(np.abs(r - np.median(r)))) if len(r) else 0.0
 
 
-def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig) -> Primitive:
+def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig,
+                 normals: np.ndarray | None = None) -> Primitive:
     """The box with its extents corrected for depth noise.
 
     The noise σ is the robust spread (1.4826 × MAD) of the points about the box face that holds the
@@ -173,6 +174,12 @@ def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig) -> Pr
     the 0.2 / 99.8 percentiles. When the opposite face holds the other half of one noisy slab (an
     inflated panel), σ is taken over both; a slab that collapses is ``min_thickness`` thick about the
     median of its points.
+
+    normals : (n, 3) unit, world, optional. An end of that axis whose outermost points
+    (``edge_tail_fraction``) mostly face sideways (|n · axis| < 0.5) is the rim of side faces the
+    camera saw edge-on — a table top's underside is hidden, its lowest points are its edges — not a
+    noise tail of the seen face, so it is not pulled in (measured: a 27 mm realistic table top came
+    out 15 mm thick when both ends were pulled).
     """
     if prim.kind is not PrimitiveKind.BOX:
         return prim
@@ -197,8 +204,11 @@ def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig) -> Pr
         return prim                 # a clean scan: nothing to correct
     lo = np.percentile(q, 0.2, axis=0)
     hi = np.percentile(q, 99.8, axis=0)
-    lo[k] += 2.9 * sigma            # depth noise runs along the rays, i.e. across the seen face
-    hi[k] -= 2.9 * sigma
+    rim_lo, rim_hi = _rim_ends(q[:, k], normals, prim.T_world_part[:3, k], config)
+    if not rim_lo:
+        lo[k] += 2.9 * sigma        # depth noise runs along the rays, i.e. across the seen face
+    if not rim_hi:
+        hi[k] -= 2.9 * sigma
     if hi[k] - lo[k] < config.min_thickness:
         # a panel: its plane is the median of its points (noise is symmetric about the surface)
         seen = float(np.median(r))
@@ -210,6 +220,19 @@ def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig) -> Pr
     T = prim.T_world_part.copy()
     T[:3, 3] = prim.to_world(((lo + hi) / 2)[None])[0]
     return Primitive(PrimitiveKind.BOX, hi - lo, T)
+
+
+def _rim_ends(x: np.ndarray, normals: np.ndarray | None, axis: np.ndarray,
+              config: ReconConfig) -> tuple[bool, bool]:
+    """(low end, high end) of the coordinates ``x`` (n,) along ``axis`` (3,) world: is that end made of
+    points whose normals (n, 3) mostly lie across the axis (side faces seen edge-on)? (False, False)
+    without normals."""
+    if normals is None or len(normals) != len(x) or len(x) < 20:
+        return False, False
+    m = max(5, int(config.edge_tail_fraction * len(x)))
+    order = np.argsort(x)
+    across = np.abs(normals @ axis) < 0.5
+    return bool(across[order[:m]].mean() > 0.5), bool(across[order[-m:]].mean() > 0.5)
 
 
 def _icp_refined(prim: Primitive, score: FitScore, points: np.ndarray, normals: np.ndarray,
@@ -247,7 +270,7 @@ def fit_part(points: np.ndarray, config: ReconConfig = ReconConfig(), *, seed: i
     best = None
     table: dict[str, float] = {}
     cands = candidate_primitives(points, config, R_world_ref, normals)
-    cands = {k: denoised_box(v, points, config) for k, v in cands.items()}   # no-op on clean scans
+    cands = {k: denoised_box(v, points, config, normals) for k, v in cands.items()}   # no-op on clean scans
     initial = {name: (prim, score_primitive(prim, points, tree, config, np.random.default_rng(seed)))
                for name, prim in cands.items()}
     cutoff = config.icp_candidate_ratio * min(s.total for _, s in initial.values())
@@ -259,7 +282,7 @@ def fit_part(points: np.ndarray, config: ReconConfig = ReconConfig(), *, seed: i
         s1 = score_primitive(moved, points, tree, config, np.random.default_rng(seed))
         prim, s = (moved, s1) if s1.total < (1.0 - config.icp_min_improvement) * s0.total else (prim, s0)
         if prim.kind is PrimitiveKind.BOX:
-            for variant in (denoised_box(prim, points, config),):
+            for variant in (denoised_box(prim, points, config, normals),):
                 s2 = score_primitive(variant, points, tree, config, np.random.default_rng(seed))
                 prim, s = (variant, s2) if s2.total < s.total else (prim, s)
         table[name] = s.total

@@ -162,20 +162,17 @@ class ObjectReconstruction:
         kinematic-structure mAP).
 
         The score of a pair is its best Eq. 1 Cont over both directions. ``weighted`` (default)
-        multiplies it by the template prior when neither direction is one the templates expect
-        (drawer–drawer, body–handle, leg–headboard: ``foreign_parent_penalty``), and also lists the
+        multiplies it by the template prior when the templates expect no contact between the two labels
+        (drawer–drawer, body–handle, leg–headboard: ``foreign_parent_penalty``; a bed's
+        headboard–mattress is expected, :func:`recon.templates.expected_contact`), and also lists the
         tree edges the part tree made without an Eq. 1 contact (a parent the template expects, close
         by) with score ``UNCONTACTED_TREE_EDGE_SCORE``. ``weighted=False``: raw Eq. 1 contacts only.
         """
         from recon.config import ReconConfig
-        from recon.templates import template_for
+        from recon.templates import expected_contact
 
         penalty = ReconConfig().foreign_parent_penalty
         labels = {p.part_id: p.label for p in self.parts}
-
-        def expected(parent: int, child: int) -> bool:
-            tpl = template_for(self.category, labels.get(child, ""))
-            return tpl is None or labels.get(parent) in tpl.parents
 
         out: dict[tuple[int, int], float] = {}
         for e in self.contacts:
@@ -184,7 +181,7 @@ class ObjectReconstruction:
         if not weighted:
             return out
         for (a, b), s in out.items():
-            if not (expected(a, b) or expected(b, a)):
+            if not expected_contact(self.category, labels.get(a, ""), labels.get(b, "")):
                 out[(a, b)] = s * penalty
         for p, c in self.tree_edges():
             out.setdefault((min(p, c), max(p, c)), UNCONTACTED_TREE_EDGE_SCORE)

@@ -13,10 +13,10 @@ from collections.abc import Callable
 
 import numpy as np
 
-from recon.completion import complete_mounted_parts, complete_vertical_parts
+from recon.completion import complete_missing_legs, complete_mounted_parts, complete_vertical_parts
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
-from recon.fitting import fit_part
+from recon.fitting import FitScore, fit_part
 from recon.joints import estimate_joints
 from recon.model import JointType, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
 from recon.part_tree import choose_root, part_tree
@@ -31,6 +31,9 @@ from scenes.naming import joint_name, link_name, object_name
 __all__ = ["reconstruct", "reconstruct_scan"]
 
 log = logging.getLogger(__name__)
+
+_NO_FIT = FitScore(0.0, 0.0, 0.0, 0.0, ())
+"""Score of a part placed by completion rather than fitted (its PartFit has no candidate scores)."""
 
 Progress = Callable[[str, int, int], None]
 """progress(message, done, total): called as objects are processed."""
@@ -101,6 +104,17 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
             fits[p.part_id] = (prim, score, table, len(p.points))
             log.debug("object %d part %d (%s): %s, score %.4f", obj.id, p.part_id, p.label, name, score.total)
         prims = {i: f[0] for i, f in fits.items()}
+        pts_by_part = {p.part_id: p.points for p in obj.parts}
+        prims, placed = complete_missing_legs(obj.category, prims, labels, obj.skipped, config)
+        for i, centre in placed.items():
+            leg = next(p for p in obj.skipped if p.part_id == i)
+            labels[i] = leg.label
+            fits[i] = (prims[i], _NO_FIT, {}, len(leg.points))
+            pts_by_part[i] = leg.points if len(leg.points) >= 3 else prims[i].sample_surface(
+                config.surface_samples, np.random.default_rng(_part_seed(seed, i)))[0]
+            warn(f"{link_name(obj.category, obj.id, leg.label, i)}: part {i} ({leg.label}) has "
+                 f"{len(leg.points)} points; placed at the fourth corner of its three fitted legs "
+                 f"({centre[0]:.3f}, {centre[1]:.3f})")
         prims, completed = complete_vertical_parts(prims, labels, config)
         for i, (down, up) in completed.items():
             log.info("object %d part %d (%s): extended %.3f m down, %.3f m up to its supports",
@@ -108,7 +122,6 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
         prims, mounted = complete_mounted_parts(prims, labels, config)
         for i, gap in mounted.items():
             log.info("object %d part %d (%s): extended %.3f m back onto its mount", obj.id, i, labels[i], gap)
-        pts_by_part = {p.part_id: p.points for p in obj.parts}
         planes = {i: part_planes(prims[i], pts_by_part[i], config, _part_seed(seed, i)) for i in prims}
         contacts = contact_edges(planes, config)
         tree = part_tree(obj.category, labels, {i: prims[i].volume for i in prims}, contacts, config,

@@ -43,11 +43,16 @@ class PartPoints:
 
 @dataclass(frozen=True, eq=False)
 class ObjectPoints:
-    """One labelled object: id, category and its parts (those with enough points)."""
+    """One labelled object: id, category and its parts (those with enough points).
+
+    skipped : the parts labels.json declares that have fewer than ``min_part_points`` points (maybe
+    none): too few to fit, but known to exist (completion.py places a hidden leg from them).
+    """
 
     id: int
     category: str
     parts: tuple[PartPoints, ...]
+    skipped: tuple[PartPoints, ...] = ()
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,9 +81,10 @@ class Scan:
         R, t = T_new_old[:3, :3], T_new_old[:3, 3]
         pts = self.points @ R.T + t
         nrm = None if self.normals is None else self.normals @ R.T
-        objs = tuple(replace(o, parts=tuple(
-            replace(p, points=p.points @ R.T + t, normals=None if p.normals is None else p.normals @ R.T)
-            for p in o.parts)) for o in self.objects)
+        def moved(parts):
+            return tuple(replace(p, points=p.points @ R.T + t, normals=None if p.normals is None else p.normals @ R.T)
+                         for p in parts)
+        objs = tuple(replace(o, parts=moved(o.parts), skipped=moved(o.skipped)) for o in self.objects)
         return replace(self, points=pts, normals=nrm, objects=objs)
 
 
@@ -223,7 +229,7 @@ def scan_from_arrays(props: dict[str, np.ndarray], labels: list[dict], *,
         oid, cat = int(o["id"]), str(o["category"]).lower()
         if cat not in KNOWN_CATEGORIES:
             warn(f"object {oid}: unknown category {cat!r}; its parts get generic joint templates")
-        parts = []
+        parts, skipped = [], []
         for p in o["parts"]:
             pid, label = int(p["id"]), str(p["label"]).lower()
             mask = labelled & (part == pid)
@@ -235,6 +241,7 @@ def scan_from_arrays(props: dict[str, np.ndarray], labels: list[dict], *,
             if count < config.min_part_points:
                 warn(f"object {oid} ({cat}) part {pid} ({label}): {count} points, fewer than "
                      f"{config.min_part_points}; the part is skipped")
+                skipped.append(PartPoints(oid, pid, label, pts[mask], None if normals is None else normals[mask]))
                 continue
             if label not in KNOWN_LABELS:
                 warn(f"object {oid} ({cat}) part {pid}: unknown label {label!r}; reconstructed as a "
@@ -244,7 +251,7 @@ def scan_from_arrays(props: dict[str, np.ndarray], labels: list[dict], *,
         if not parts:
             warn(f"object {oid} ({cat}): no part has enough points; the object is skipped")
             continue
-        objects.append(ObjectPoints(oid, cat, tuple(parts)))
+        objects.append(ObjectPoints(oid, cat, tuple(parts), tuple(skipped)))
     if not objects:
         raise ScanError(f"{source}: no labelled object has a part with at least "
                         f"{config.min_part_points} points")

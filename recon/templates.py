@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from recon.model import JointType
 
-__all__ = ["JointTemplate", "ROOT_LABELS", "MOVABLE_LABELS", "template_for"]
+__all__ = ["JointTemplate", "ROOT_LABELS", "MOVABLE_LABELS", "template_for", "expected_contact"]
 
 ROOT_LABELS = ("body", "frame", "base", "top", "seat", "mattress")
 """Labels that can be an object's base part (fixed to the world), in order of preference."""
@@ -57,3 +57,22 @@ MOVABLE_LABELS = frozenset(k for k, t in _BY_LABEL.items() if t.joint is not Joi
 def template_for(category: str, label: str) -> JointTemplate | None:
     """The template of a part ``label`` in an object of ``category``; None = no template (rigid)."""
     return _BY_CATEGORY.get((category, label)) or _BY_LABEL.get(label)
+
+
+_NEIGHBOURS: dict[str, frozenset[frozenset[str]]] = {
+    # a mattress rests against its headboard (two children of the frame that touch by design); a leg
+    # beside the headboard touches it only by accident of where the generator or carpenter put it
+    "bed": frozenset({frozenset({"headboard", "mattress"})}),
+}
+"""Per category: label pairs that touch by design without one hanging from the other."""
+
+
+def expected_contact(category: str, label_a: str, label_b: str) -> bool:
+    """True when the templates expect parts ``label_a`` and ``label_b`` of a ``category`` object to
+    touch: one is a parent the other's template expects (either way round), a label without a
+    template is involved, or the pair is a designed neighbour contact (a bed's mattress against its
+    headboard)."""
+    ta, tb = template_for(category, label_a), template_for(category, label_b)
+    if ta is None or tb is None or label_b in ta.parents or label_a in tb.parents:
+        return True
+    return frozenset({label_a, label_b}) in _NEIGHBOURS.get(category, frozenset())
