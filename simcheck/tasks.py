@@ -12,6 +12,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+import planners
 from simcheck.errors import TaskSpecError
 from simcheck.scene_joints import SceneJoint, read_scene_joints
 
@@ -19,8 +20,6 @@ __all__ = ["Task", "parse_task", "parse_tasks", "check_task", "default_amount", 
 
 #: task kind -> (planner kind, joint type it needs)
 KINDS = {"open-drawer": ("drawer", "prismatic"), "open-door": ("door", "revolute")}
-DEFAULT_RANGE_FRACTION = 0.9
-DOOR_MAX_DEFAULT = math.pi / 2
 
 
 @dataclass(frozen=True)
@@ -103,11 +102,9 @@ def parse_tasks(tasks, amounts=None) -> tuple[Task, ...]:
 
 
 def default_amount(kind: str, joint: SceneJoint, start: float = 0.0) -> float:
-    """Default opening of ``joint`` from ``start``: 90% of the remaining range, doors at most 90 deg."""
-    amount = DEFAULT_RANGE_FRACTION * (joint.upper - max(start, joint.lower))
-    if kind == "open-door":
-        amount = min(amount, DOOR_MAX_DEFAULT)
-    return amount
+    """Default opening of ``joint`` from ``start``: 90% of the remaining range, doors at most 90 deg
+    (the planner's rule, :func:`planners.default_amount` with the default :class:`planners.PlannerConfig`)."""
+    return planners.default_amount(KINDS[kind][0], max(start, joint.lower), joint.upper, planners.PlannerConfig())
 
 
 def check_task(task: Task, scene_urdf: str | Path, joints: dict[str, SceneJoint] | None = None) -> SceneJoint:
