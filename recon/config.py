@@ -135,6 +135,19 @@ class ReconConfig:
     joint_friction: float = 0.1
     """URDF <dynamics friction> of movable joints (N or N·m)."""
 
+    # --- articulated-template shapes (part_shapes.py) ---
+    template_shapes: bool = True
+    """Give drawers their box and bodies with fronts a hollow carcass (else every part is its one
+    fitted primitive)."""
+    carcass_wall: float = 0.018
+    """Panel thickness (m) of a hollow carcass (18 mm particle board)."""
+    drawer_wall: float = 0.012
+    """Wall thickness (m) of a drawer box."""
+    drawer_gap: float = 0.005
+    """Clearance (m) between a drawer box and the carcass panels around it."""
+    drawer_box_height: float = 0.7
+    """A drawer box's height as a fraction of the room behind its front."""
+
     # --- refinement, Alg. 1 (refinement.py) ---
     refine: bool = True
     """Run Alg. 1 (off only to measure what it does)."""

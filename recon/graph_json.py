@@ -7,7 +7,8 @@ Layout (format ``partscene.graph/1``; lengths in metres, angles in radians, worl
                   "root_part_id", "isolated_part_ids",
                   "parts": [{"part_id", "label", "link", "type", "size", "T_world_part", "score",
                              "candidate_scores", "n_points",
-                             "surface_planes": [{"normal", "d", "polygon"}]}],
+                             "surface_planes": [{"normal", "d", "polygon"}],
+                             "shapes": [{"type", "size", "T_world_part"}]}],
                   "joints": [{"name", "type", "parent_part_id", "child_part_id", "axis", "origin",
                               "lower", "upper", "contact_score", "handle_part_id"}],
                   "contacts": [{"parent_part_id", "child_part_id", "score", "align", "dist",
@@ -16,7 +17,8 @@ Layout (format ``partscene.graph/1``; lengths in metres, angles in radians, worl
      "warnings": [...], "timings": {...}}
 
 A part's ``size`` follows :mod:`recon.primitive` (box extents; cylinder (2r, 2r, length along local
-z); sphere (2r, 2r, 2r)). A root joint has ``parent_part_id`` null (its parent is the world link).
+z); sphere (2r, 2r, 2r)). A part's ``shapes`` are its articulated-template shapes (a drawer's front and box, a body's carcass
+panels; empty = the fitted primitive alone). A root joint has ``parent_part_id`` null (its parent is the world link).
 """
 
 from __future__ import annotations
@@ -62,6 +64,8 @@ def graph_dict(rec: Reconstruction) -> dict:
                 "score": p.score, "candidate_scores": dict(p.candidate_scores), "n_points": p.n_points,
                 "surface_planes": [{"normal": _list(s.normal), "d": float(s.d), "polygon": _list(s.polygon)}
                                    for s in p.planes],
+                "shapes": [{"type": q.kind.value, "size": _list(q.size), "T_world_part": _list(q.T_world_part)}
+                           for q in p.shapes],
             } for p in o.parts],
             "joints": [{
                 "name": j.name, "type": j.type.value, "parent_part_id": j.parent_part_id,
@@ -100,7 +104,9 @@ def reconstruction_from_dict(doc: dict, source: str = "<dict>") -> Reconstructio
                 p["part_id"], p["label"], p["link"], Primitive(p["type"], p["size"], p["T_world_part"]),
                 float(p["score"]), dict(p["candidate_scores"]), int(p["n_points"]),
                 tuple(SurfacePlane(np.asarray(s["normal"], float), float(s["d"]), np.asarray(s["polygon"], float))
-                      for s in p["surface_planes"])) for p in o["parts"])
+                      for s in p["surface_planes"]),
+                tuple(Primitive(q["type"], q["size"], q["T_world_part"]) for q in p.get("shapes", ())))
+                for p in o["parts"])
             joints = tuple(JointEstimate(j["name"], j["type"], j["parent_part_id"], j["child_part_id"],
                                          j["axis"], j["origin"], j["lower"], j["upper"], j["contact_score"],
                                          j.get("handle_part_id")) for j in o["joints"])

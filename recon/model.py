@@ -47,6 +47,8 @@ class PartFit:
     candidate_scores : {candidate name: score} of every candidate tried
     n_points : number of scan points of the part
     planes : the surface planes Π of the primitive (world frame)
+    shapes : the part's articulated-template shapes (a drawer's front + box, a body's carcass panels;
+        part_shapes.py), world frame; empty = the primitive alone (see :attr:`solids`)
     """
 
     part_id: int
@@ -57,10 +59,17 @@ class PartFit:
     candidate_scores: dict
     n_points: int
     planes: tuple[SurfacePlane, ...]
+    shapes: tuple[Primitive, ...] = ()
+
+    @property
+    def solids(self) -> tuple[Primitive, ...]:
+        """The part's geometry as URDF shapes: its template shapes, else its fitted primitive."""
+        return tuple(self.shapes) or (self.primitive,)
 
     def isclose(self, other: "PartFit", atol: float = 1e-6) -> bool:
         return (self.part_id == other.part_id and self.label == other.label and self.link == other.link
-                and self.primitive.isclose(other.primitive, atol))
+                and self.primitive.isclose(other.primitive, atol) and len(self.solids) == len(other.solids)
+                and all(a.isclose(b, atol) for a, b in zip(self.solids, other.solids)))
 
 
 @dataclass(frozen=True)

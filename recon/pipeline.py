@@ -19,6 +19,7 @@ from recon.contacts import contact_edges
 from recon.fitting import FitScore, fit_part
 from recon.joints import estimate_joints
 from recon.model import JointType, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
+from recon.part_shapes import carcass_shapes, drawer_shapes
 from recon.part_tree import choose_root, part_tree
 from recon.planes import part_planes
 from recon.primitive import Primitive
@@ -197,10 +198,11 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
         names = {i: joint_name(obj.category, obj.id, labels[i], i) for i in labels}
         joints = estimate_joints(obj.category, names, labels, prims, tree, obstacles_for_object(obj.id),
                                  config, warn)
+        shapes = template_shapes(joints, prims, labels, config) if config.template_shapes else {}
         parts = tuple(
             PartFit(i, labels[i], link_name(obj.category, obj.id, labels[i], i), prims[i],
                     float(fits[i][1].total), dict(fits[i][2]), int(fits[i][3]),
-                    prims[i].planes(config.cylinder_side_faces))
+                    prims[i].planes(config.cylinder_side_faces), shapes.get(i, ()))
             for i in labels)
         front = _front(joints, prims)
         T_wo, size = object_frame([prims[tree.root]] + [p for i, p in prims.items() if i != tree.root], front)
@@ -288,6 +290,31 @@ def _part_distances(prims: dict[int, Primitive]) -> dict[tuple[int, int], float]
                 q = np.vstack([pb.corners(), pb.center[None]])
                 out[(a, b)] = float(pa.surface_distance(q).min())
     return out
+
+
+def template_shapes(joints, prims: dict[int, Primitive], labels: dict[int, str],
+                    config: ReconConfig) -> dict[int, tuple[Primitive, ...]]:
+    """{part_id: template shapes} of an object's drawers (front + box) and of the parents of its
+    drawers/doors (a carcass open at their fronts); other parts keep their primitive (part_shapes.py)."""
+    opens: dict[int, list[tuple[np.ndarray, Primitive]]] = {}
+    out: dict[int, tuple[Primitive, ...]] = {}
+    for j in joints:
+        if j.type is JointType.FIXED or j.parent_part_id is None:
+            continue
+        if j.type is JointType.PRISMATIC:
+            normal = j.axis
+            if labels[j.child_part_id] == "drawer":
+                out[j.child_part_id] = drawer_shapes(prims[j.child_part_id], j.axis, prims[j.parent_part_id], config)
+        else:
+            n = np.cross(j.axis, prims[j.child_part_id].center - j.origin)
+            if np.linalg.norm(n) < 1e-9:
+                continue
+            normal = n / np.linalg.norm(n)
+        opens.setdefault(j.parent_part_id, []).append((normal, prims[j.child_part_id]))
+    for i, fronts in opens.items():
+        if labels[i] in ("body", "frame", "base"):
+            out[i] = carcass_shapes(prims[i], fronts, config)
+    return {i: s for i, s in out.items() if len(s) > 1}
 
 
 def _front(joints, prims: dict[int, Primitive]) -> np.ndarray | None:

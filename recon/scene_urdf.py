@@ -7,8 +7,10 @@ links fixed to their drawer/door.
 Frames: every link frame is world-aligned (identity rotation in the world at joint value 0) and sits
 at the joint's origin — on the axis for a movable joint, at the part's centre for a fixed one — so a
 URDF ``<axis>`` equals the world axis of graph.json and a joint origin is a pure translation. The
-primitive sits in its link at ``T_link_part``. Mass = ``density`` × primitive volume; inertia is the
-closed form of the primitive, rotated into the link frame. Parts that move (drawers, doors and what
+primitive sits in its link at ``T_link_part``; a part with articulated-template shapes (a drawer's box,
+a body's carcass; ``PartFit.solids``) has one visual and one collision per shape. Mass = ``density`` ×
+volume; inertia is the closed form of the primitive (of each shape, combined about their centre of mass
+with the parallel-axis theorem), in the link frame. Parts that move (drawers, doors and what
 hangs from them) get collision shapes shrunk by ``collision_clearance`` so they do not start in
 contact with their body or siblings.
 """
@@ -22,7 +24,7 @@ from recon.model import JointType, Reconstruction
 from recon.primitive import Primitive, PrimitiveKind
 from scenes.naming import WORLD_LINK
 
-__all__ = ["urdf_robot", "urdf_string", "link_frames"]
+__all__ = ["urdf_robot", "urdf_string", "link_frames", "compound_inertial"]
 
 
 def _translation(p: np.ndarray) -> np.ndarray:
@@ -37,6 +39,28 @@ def _geometry(prim: Primitive) -> yourdfpy.Geometry:
     if prim.kind is PrimitiveKind.CYLINDER:
         return yourdfpy.Geometry(cylinder=yourdfpy.Cylinder(radius=prim.radius, length=prim.length))
     return yourdfpy.Geometry(sphere=yourdfpy.Sphere(radius=prim.size[0] / 2.0))
+
+
+def compound_inertial(solids, density: float, T_link_world: np.ndarray) -> tuple[np.ndarray, float, np.ndarray]:
+    """(T_link_com (4, 4), mass kg, (3, 3) inertia about the centre of mass in the link's axes) of the
+    union of ``solids`` (world-frame primitives, overlaps counted twice: panels meet only at edges)
+    of uniform ``density`` (kg/m^3). A single primitive keeps its own axes (T_link_com = T_link_part)."""
+    if len(solids) == 1:
+        T_lp = T_link_world @ solids[0].T_world_part
+        mass = density * solids[0].volume
+        return T_lp, mass, solids[0].inertia(mass)
+    masses = np.array([density * p.volume for p in solids])
+    T_lps = [T_link_world @ p.T_world_part for p in solids]
+    centres = np.array([T[:3, 3] for T in T_lps])
+    mass = float(masses.sum())
+    com = (masses[:, None] * centres).sum(axis=0) / mass
+    inertia = np.zeros((3, 3))
+    for m, T, p in zip(masses, T_lps, solids):
+        R, r = T[:3, :3], T[:3, 3] - com
+        inertia += R @ p.inertia(float(m)) @ R.T + m * (float(r @ r) * np.eye(3) - np.outer(r, r))
+    T_lc = np.eye(4)
+    T_lc[:3, 3] = com
+    return T_lc, mass, inertia
 
 
 def link_frames(rec: Reconstruction) -> dict[str, np.ndarray]:
@@ -69,18 +93,21 @@ def urdf_robot(rec: Reconstruction, name: str = "scene") -> yourdfpy.Robot:
                     moving.add(c)
                     changed = True
         for part in obj.parts:
-            T_wl = frames[part.link]
-            T_lp = np.linalg.inv(T_wl) @ part.primitive.T_world_part
-            mass = cfg.density * part.primitive.volume
-            inertia = part.primitive.inertia(mass)      # about the centre, in the part frame = T_lp
-            coll_prim = part.primitive.shrunk(cfg.collision_clearance) if part.part_id in moving else part.primitive
+            T_lw = np.linalg.inv(frames[part.link])
+            solids = part.solids
+            T_lc, mass, inertia = compound_inertial(solids, cfg.density, T_lw)
+            visuals, collisions = [], []
+            for k, prim in enumerate(solids):
+                T_lp = T_lw @ prim.T_world_part
+                suffix = "" if len(solids) == 1 else str(k)
+                coll = prim.shrunk(cfg.collision_clearance) if part.part_id in moving else prim
+                visuals.append(yourdfpy.Visual(name=f"{part.link}_visual{suffix}", origin=T_lp,
+                                               geometry=_geometry(prim)))
+                collisions.append(yourdfpy.Collision(name=f"{part.link}_collision{suffix}", origin=T_lp,
+                                                     geometry=_geometry(coll)))
             links.append(yourdfpy.Link(
-                name=part.link,
-                inertial=yourdfpy.Inertial(origin=T_lp, mass=float(mass), inertia=inertia),
-                visuals=[yourdfpy.Visual(name=f"{part.link}_visual", origin=T_lp,
-                                         geometry=_geometry(part.primitive))],
-                collisions=[yourdfpy.Collision(name=f"{part.link}_collision", origin=T_lp,
-                                               geometry=_geometry(coll_prim))]))
+                name=part.link, inertial=yourdfpy.Inertial(origin=T_lc, mass=float(mass), inertia=inertia),
+                visuals=visuals, collisions=collisions))
         for j in obj.joints:
             child = obj.part(j.child_part_id).link
             if j.parent_part_id is None:
