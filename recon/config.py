@@ -51,6 +51,8 @@ class ReconConfig:
     edge_tail_fraction: float = 0.02
     """Fraction of a box's points at each end of its best-seen axis that decide whether that end is a
     noise tail (pulled in by the noise correction) or a rim of side faces (kept)."""
+    rim_min_extent: float = 0.3
+    """... and only for boxes this wide (m) along both other axes (table tops, bed frames), not handles."""
     min_face_points: int = 12
     """The opposite face needs this many points (and a fifth of the best face's) to join a noise estimate."""
     coverage_distance: float = 0.02

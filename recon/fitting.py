@@ -179,7 +179,8 @@ def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig,
     (``edge_tail_fraction``) mostly face sideways (|n · axis| < 0.5) is the rim of side faces the
     camera saw edge-on — a table top's underside is hidden, its lowest points are its edges — not a
     noise tail of the seen face, so it is not pulled in (measured: a 27 mm realistic table top came
-    out 15 mm thick when both ends were pulled).
+    out 15 mm thick when both ends were pulled). Only for boxes at least ``rim_min_extent`` across the
+    axis: the front of a 12 mm handle bar is no rim, its noise is.
     """
     if prim.kind is not PrimitiveKind.BOX:
         return prim
@@ -204,7 +205,8 @@ def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig,
         return prim                 # a clean scan: nothing to correct
     lo = np.percentile(q, 0.2, axis=0)
     hi = np.percentile(q, 99.8, axis=0)
-    rim_lo, rim_hi = _rim_ends(q[:, k], normals, prim.T_world_part[:3, k], config)
+    wide = all(prim.size[a] >= config.rim_min_extent for a in range(3) if a != k)
+    rim_lo, rim_hi = _rim_ends(q[:, k], normals, prim.T_world_part[:3, k], config) if wide else (False, False)
     if not rim_lo:
         lo[k] += 2.9 * sigma        # depth noise runs along the rays, i.e. across the seen face
     if not rim_hi:

@@ -102,3 +102,21 @@ def test_a_table_top_seen_from_above_keeps_its_rim_thickness():
     assert c.max() == pytest.approx(t / 2, abs=0.004)           # the noisy face is pulled in
     blind = denoised_box(raw, pts, CFG)                         # without normals: both ends pulled
     assert blind.size[2] < fixed.size[2] - 0.01
+
+
+def test_a_handle_bar_is_no_rim_both_ends_of_its_noise_are_pulled_in():
+    """A 12 mm bar seen from the front: its front face (normals sideways) is noise, not a rim; keeping
+    it made a demo handle 40 mm tall and the grasp missed it."""
+    rng = np.random.default_rng(4)
+    n_top, n_front = 2000, 1000
+    top = np.c_[rng.uniform(-0.1, 0.1, n_top), rng.uniform(-0.006, 0.006, n_top), 0.006 + rng.normal(0, 0.006, n_top)]
+    front = np.c_[rng.uniform(-0.1, 0.1, n_front), 0.006 + rng.normal(0, 0.006, n_front),
+                  rng.uniform(-0.006, 0.006, n_front)]
+    pts = np.vstack([top, front])
+    nrm = np.vstack([np.tile([0, 0, 1.0], (n_top, 1)), np.tile([0, 1.0, 0], (n_front, 1))])
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    raw = Primitive("box", hi - lo, at(*((lo + hi) / 2)))
+    assert denoised_box(raw, pts, CFG, nrm).isclose(denoised_box(raw, pts, CFG))
+    import dataclasses
+    anywhere = dataclasses.replace(CFG, rim_min_extent=0.0)     # the rule without its size guard
+    assert not denoised_box(raw, pts, anywhere, nrm).isclose(denoised_box(raw, pts, anywhere))
