@@ -172,6 +172,31 @@ class ReconConfig:
     max_upright_tilt: float = 0.2
     """An object's tilt (rad) below this is corrected to upright by its support refinement."""
 
+    # --- walls from the background (walls.py) ---
+    walls: bool = True
+    """Fit the room's walls to the background points and put them in scene.urdf / graph.json."""
+    wall_floor_margin: float = 0.05
+    """Background points below this height (m) are floor, not wall."""
+    wall_ransac_distance: float = 0.05
+    """RANSAC inlier distance (m) of a wall plane (walls are far from the camera: their depth noise is
+    centimetres; the plane's offset is then the median of its inliers)."""
+    wall_max_planes: int = 8
+    """At most this many RANSAC planes are tried."""
+    wall_min_fraction: float = 0.03
+    """A wall plane needs at least this fraction of the (subsampled) background points ..."""
+    wall_min_points: int = 200
+    """... and at least this many."""
+    wall_max_points: int = 30000
+    """The background is subsampled (seeded) to this many points for RANSAC."""
+    wall_max_tilt: float = 0.1
+    """|n_z| of a wall plane's unit normal at most this (vertical within ~6°)."""
+    wall_min_length: float = 0.5
+    """A wall spans at least this (m) along the floor and up."""
+    wall_merge_distance: float = 0.25
+    """Parallel wall planes closer than this (m) are one wall."""
+    wall_thickness: float = 0.1
+    """Thickness (m) of a wall box, placed behind its plane (outside the room)."""
+
     # --- floor levelling (leveling.py) ---
     floor_ransac_distance: float = 0.02
     """RANSAC inlier distance (m) of the floor plane."""

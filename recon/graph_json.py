@@ -14,6 +14,7 @@ Layout (format ``partscene.graph/1``; lengths in metres, angles in radians, worl
                   "contacts": [{"parent_part_id", "child_part_id", "score", "align", "dist",
                                 "parent_plane", "child_plane"}]}],
      "supports": [[object id, supporter id | null]], "proximal": [[a, b]],
+     "walls": [{"name": "wall0", "size": [thickness, length, height], "T_world_wall": 4x4, "n_points"}],
      "warnings": [...], "timings": {...}}
 
 A part's ``size`` follows :mod:`recon.primitive` (box extents; cylinder (2r, 2r, length along local
@@ -34,6 +35,7 @@ from recon.errors import ScanError
 from recon.model import (ContactEdge, JointEstimate, ObjectReconstruction, PartFit, Reconstruction,
                          SceneGraph)
 from recon.primitive import Primitive, SurfacePlane
+from recon.walls import Wall
 
 __all__ = ["FORMAT", "graph_dict", "graph_json_string", "read_graph_json", "reconstruction_from_dict"]
 
@@ -80,6 +82,8 @@ def graph_dict(rec: Reconstruction) -> dict:
         "objects": objects,
         "supports": [[a, b] for a, b in rec.graph.supports],
         "proximal": [[a, b] for a, b in rec.graph.proximal],
+        "walls": [{"name": w.name, "size": _list(w.size), "T_world_wall": _list(w.T_world_wall),
+                   "n_points": w.n_points} for w in rec.walls],
         "warnings": list(rec.warnings), "timings": dict(rec.timings),
     }
 
@@ -116,10 +120,12 @@ def reconstruction_from_dict(doc: dict, source: str = "<dict>") -> Reconstructio
                 tuple(o["isolated_part_ids"]), np.asarray(o["T_world_object"], float),
                 np.asarray(o["size"], float), o["supported_by"]))
         graph = SceneGraph(tuple((a, b) for a, b in doc["supports"]), tuple((a, b) for a, b in doc["proximal"]))
+        walls = tuple(Wall(w["name"], w["size"], w["T_world_wall"], int(w.get("n_points", 0)))
+                      for w in doc.get("walls", ()))
     except (KeyError, TypeError, ValueError) as exc:
         raise ScanError(f"{source}: malformed {FORMAT} document ({type(exc).__name__}: {exc})") from exc
     return Reconstruction(tuple(objects), graph, tuple(doc.get("warnings", ())), config,
-                          int(doc.get("seed", 0)), dict(doc.get("timings", {})))
+                          int(doc.get("seed", 0)), dict(doc.get("timings", {})), walls)
 
 
 def read_graph_json(path: str | Path) -> Reconstruction:

@@ -223,6 +223,7 @@ class Reconstruction:
     warnings : human-readable problems met on the way (each names its object / part)
     config : the ReconConfig used; seed : the seed used
     timings : {stage: seconds}
+    walls : :class:`recon.walls.Wall` fitted to the background (links ``wall0``, ``wall1``, ...)
     """
 
     objects: tuple[ObjectReconstruction, ...]
@@ -231,6 +232,7 @@ class Reconstruction:
     config: ReconConfig = field(default_factory=ReconConfig)
     seed: int = 0
     timings: dict = field(default_factory=dict)
+    walls: tuple = ()
 
     def object(self, object_id: int) -> ObjectReconstruction:
         for o in self.objects:

@@ -25,6 +25,7 @@ from recon.planes import part_planes
 from recon.primitive import Primitive
 from recon.refinement import refine_parts
 from recon.scan import Scan, read_scan
+from recon.walls import walls_from_background
 from recon.scene_graph import (object_frame, proximal_relations, support_relations,
                                upright_correction)
 from scenes.naming import joint_name, link_name, object_name
@@ -212,10 +213,17 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
     timings["joints"] = time.perf_counter() - t0
     prox = proximal_relations({o.id: list(o.primitives().values()) for o in objects}, config)
     graph = SceneGraph(tuple((o.id, o.supported_by) for o in objects), prox)
+    walls = ()
+    if config.walls:
+        t0 = time.perf_counter()
+        labelled = scan.object_id >= 0
+        centre = scan.points[labelled].mean(axis=0) if labelled.any() else scan.points.mean(axis=0)
+        walls = walls_from_background(scan.points[~labelled], centre, config, seed)
+        timings["walls"] = time.perf_counter() - t0
     timings["total"] = time.perf_counter() - t_start
     if progress:
         progress("done", n_obj, n_obj)
-    return Reconstruction(tuple(objects), graph, tuple(warnings), config, int(seed), timings)
+    return Reconstruction(tuple(objects), graph, tuple(warnings), config, int(seed), timings, walls)
 
 
 def _without_outliers(scan: Scan, config: ReconConfig) -> tuple[Scan, int]:

@@ -2,7 +2,8 @@
 
 Shape (docs/contracts.md "Scene URDF shape"): root link ``world``; each object's root part fixed to
 ``world``; every other part hangs from its tree parent by its estimated joint; handles are their own
-links fixed to their drawer/door.
+links fixed to their drawer/door. Walls fitted to the background are fixed boxes on ``world``
+(links ``wall0``, ``wall1``, ...; joints ``wall0_joint``, ...).
 
 Frames: every link frame is world-aligned (identity rotation in the world at joint value 0) and sits
 at the joint's origin — on the axis for a movable joint, at the part's centre for a fixed one — so a
@@ -25,6 +26,10 @@ from recon.primitive import Primitive, PrimitiveKind
 from scenes.naming import WORLD_LINK
 
 __all__ = ["urdf_robot", "urdf_string", "link_frames", "compound_inertial"]
+
+
+WALL_DENSITY = 1500.0
+"""kg/m^3 of a wall box (fixed to the world; the mass only keeps loaders quiet)."""
 
 
 def _translation(p: np.ndarray) -> np.ndarray:
@@ -126,6 +131,15 @@ def urdf_robot(rec: Reconstruction, name: str = "scene") -> yourdfpy.Robot:
                 kw = dict(dynamics=yourdfpy.Dynamics(damping=0.0, friction=0.0))
             joints.append(yourdfpy.Joint(name=j.name, type=j.type.value, parent=parent, child=child,
                                          origin=origin, **kw))
+    for wall in rec.walls:       # fixed boxes on the world, named like the truth's (wall0, wall1, ...)
+        prim = Primitive(PrimitiveKind.BOX, wall.size, np.eye(4))
+        mass = WALL_DENSITY * prim.volume
+        links.append(yourdfpy.Link(
+            name=wall.name, inertial=yourdfpy.Inertial(origin=np.eye(4), mass=float(mass), inertia=prim.inertia(mass)),
+            visuals=[yourdfpy.Visual(name=f"{wall.name}_visual", origin=np.eye(4), geometry=_geometry(prim))],
+            collisions=[yourdfpy.Collision(name=f"{wall.name}_collision", origin=np.eye(4), geometry=_geometry(prim))]))
+        joints.append(yourdfpy.Joint(name=f"{wall.name}_joint", type="fixed", parent=WORLD_LINK, child=wall.name,
+                                     origin=wall.T_world_wall, dynamics=yourdfpy.Dynamics(damping=0.0, friction=0.0)))
     return yourdfpy.Robot(name=name, links=links, joints=joints)
 
 
