@@ -14,6 +14,8 @@ Pipeline (one module per product)::
     part_tree.py   Eq. 4: maximum spanning arborescence (Edmonds), root = base part, template prior
     refinement.py  Alg. 1: Kabsch rotation of each child onto its parent's planes, top down
     joints.py      articulated templates (templates.py): joint type, axis, origin, limits (sweeps)
+    part_shapes.py template shapes: a drawer's box behind its front, a hollow carcass open at its fronts
+    walls.py       walls of the room: vertical RANSAC planes of the background -> wall0, wall1, ... boxes
     scene_graph.py objects: support (floor / another object), proximity, upright pose
     scene_urdf.py  scene.urdf (yourdfpy);  graph_json.py  graph.json;  preview.py  preview.png
     output.py      atomic writing;  cli.py  ``recon build``;  open3d_engine.py  the open3d adapter
@@ -31,12 +33,15 @@ Python API::
             part.primitive.size       # (3,) box extents | cylinder (2r, 2r, length along local z) | sphere (2r,)*3
             part.primitive.T_world_part   # (4, 4)
             part.primitive.to_trimesh(), part.primitive.sample_surface(n, rng)
+            part.solids               # the URDF shapes: template shapes (drawer box, carcass panels)
+                                      #   or (part.primitive,)
         obj.joints                    # JointEstimate: name, type, parent_part_id, child_part_id,
                                       #   axis (3,), origin (3,), lower, upper, contact_score
         obj.contact_edges_undirected()   # {(a, b): score} every Eq. 1 contact (for mAP);
                                       #   score = Cont x template prior (weighted=False: raw Cont)
         obj.tree_edges()              # ((parent, child), ...) the estimated part tree
     rec.graph.supports, rec.graph.proximal, rec.warnings
+    rec.walls                         # Wall: name ("wall0"), size (thickness, length, height), T_world_wall
 
     read_graph_json("graph.json") -> Reconstruction     # the inverse of write (same model)
 
