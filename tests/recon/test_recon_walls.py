@@ -53,6 +53,13 @@ def test_walls_are_fixed_boxes_on_world_in_the_urdf_and_round_trip_through_graph
     rec.write(tmp_path)
     back = read_graph_json(tmp_path / "graph.json")
     assert len(back.walls) == 2 and all(a.isclose(b) for a, b in zip(back.walls, walls))
+    import pinocchio
+    import yourdfpy
+
+    urdf = yourdfpy.URDF.load(str(tmp_path / "scene.urdf"))
+    assert urdf.validate() and np.allclose(urdf.get_transform("wall1", "world"), walls[1].T_world_wall)
+    model = pinocchio.buildModelFromUrdf(str(tmp_path / "scene.urdf"))
+    assert model.existFrame("wall0") and model.existFrame("wall1")
     cid = pb.connect(pb.DIRECT)
     try:
         uid = pb.loadURDF(str(tmp_path / "scene.urdf"), useFixedBase=True, physicsClientId=cid)
