@@ -72,8 +72,10 @@ class ObjectEstimate:
 
 
 def estimate_from_reconstruction(obj: ObjectReconstruction, seconds: float = float("nan")) -> ObjectEstimate:
-    """The metrics' view of one object of :func:`recon.reconstruct`: its fitted primitives, its joints
-    (the world joint of the root is kept; it matches no true joint) and every Eq. 1 contact with its
-    score (not only the tree edges: the AP ranks all of them)."""
-    return ObjectEstimate(obj.id, obj.category, tuple(p.primitive for p in obj.parts), tuple(obj.joints),
-                          obj.contact_edges_undirected(), seconds, tuple(p.part_id for p in obj.parts))
+    """The metrics' view of one object of :func:`recon.reconstruct`: the geometry it writes to scene.urdf
+    (each part's ``solids``: its articulated-template shapes, else its fitted primitive), its joints (the
+    world joint of the root is kept; it matches no true joint) and every Eq. 1 contact with its score
+    (not only the tree edges: the AP ranks all of them)."""
+    solids = [(p.part_id, s) for p in obj.parts for s in p.solids]
+    return ObjectEstimate(obj.id, obj.category, tuple(s for _, s in solids), tuple(obj.joints),
+                          obj.contact_edges_undirected(), seconds, tuple(i for i, _ in solids))
