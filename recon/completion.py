@@ -12,9 +12,9 @@ mounted part is extended backwards, along its axis nearest the plane's normal, o
 drawer/door (else any part) that it stands in front of, when that face is within ``completion_reach``
 (a bar handle lying along the face becomes the box enveloping it and its hidden posts).
 A leg the camera hardly saw at all (under a bed frame: fewer than ``min_part_points`` points, maybe
-none) is still declared in labels.json; a bed, table or chair with three fitted corner legs has a
-fourth, so the missing one is placed at the fourth corner of the rectangle the three span, as a copy
-of the leg diagonally opposite it (``complete_missing_legs``).
+none) is still declared in labels.json; a bed, table or chair stands on four legs at the corners of a
+rectangle, so missing legs are placed at the corners the fitted ones leave free, as copies of the
+nearest fitted leg (``complete_missing_legs``).
 Nothing else is changed.
 """
 
@@ -34,8 +34,7 @@ MOUNTED_LABELS = frozenset({"handle", "knob"})
 _MOUNTS = frozenset({"drawer", "door"})
 LEGGED_CATEGORIES = frozenset({"bed", "table", "chair"})
 """Categories whose template stands on four legs at the corners of a rectangle."""
-_RIGHT_ANGLE_COS = 0.15
-"""Three leg centres span a rectangle's corner when the angle at one of them is within ~9° of 90°."""
+
 
 
 def _extended(prim: Primitive, k: int, direction: np.ndarray, amount: float) -> Primitive:
@@ -144,39 +143,72 @@ def complete_vertical_parts(prims: dict[int, Primitive], labels: dict[int, str],
     return out, changes
 
 
+def _two_values(x: np.ndarray, mirror_about: float, tol: float) -> list[float] | None:
+    """The two distinct values of ``x`` (clustered within ``tol``), or one value and its mirror image
+    about ``mirror_about``; None when ``x`` has more than two."""
+    vals: list[list[float]] = []
+    for v in np.sort(x):
+        if vals and v - vals[-1][-1] <= tol:
+            vals[-1].append(float(v))
+        else:
+            vals.append([float(v)])
+    means = [float(np.mean(c)) for c in vals]
+    if len(means) == 1:
+        means.append(2 * mirror_about - means[0])
+    return sorted(means) if len(means) == 2 else None
+
+
 def complete_missing_legs(category: str, prims: dict[int, Primitive], labels: dict[int, str],
-                          skipped, config: ReconConfig) -> tuple[dict[int, Primitive], dict[int, np.ndarray]]:
-    """Place the fourth leg of a four-legged object whose camera missed it.
+                          skipped, config: ReconConfig, base: int | None = None
+                          ) -> tuple[dict[int, Primitive], dict[int, np.ndarray]]:
+    """Place the legs of a four-legged object that the camera missed.
 
     prims : {part_id: fitted primitive}; labels : {part_id: label} of the fitted parts
     skipped : the object's parts with too few points to fit (:attr:`recon.scan.ObjectPoints.skipped`)
-    Applies when the category stands on four legs, exactly three legs are fitted and exactly one leg is
-    skipped, the three centres span a right angle (within ``_RIGHT_ANGLE_COS``), and the skipped leg's
-    points (if it has any) lie within ``completion_reach`` (m) of the fourth corner.
-    Returns (prims with the placed leg added, {part_id: (3,) world centre of each placed leg}).
+    base : the part the legs carry (its horizontal axes and centre frame the leg rectangle)
+    Applies when the category stands on four legs, at least two legs are fitted and the skipped legs make
+    up four. The fitted legs' centres, in the base's horizontal axes, give the rectangle's two x and two
+    y values (one value is mirrored about the base's centre when the two seen legs share it); the
+    missing legs go to the free corners — a leg with a few points to the corner nearest them (within
+    ``completion_reach``), the others in part-id order — each a copy of the nearest fitted leg.
+    Returns (prims with the placed legs added, {part_id: (3,) world centre of each placed leg}).
     """
     legs = [i for i, lab in labels.items() if lab == "leg"]
-    missing = [p for p in skipped if p.label == "leg"]
-    if category not in LEGGED_CATEGORIES or len(legs) != 3 or len(missing) != 1:
+    missing = sorted((p for p in skipped if p.label == "leg"), key=lambda p: p.part_id)
+    if category not in LEGGED_CATEGORIES or len(legs) < 2 or not missing or len(legs) + len(missing) != 4:
         return dict(prims), {}
-    c = {i: prims[i].center for i in legs}
-    best = None
-    for b in legs:
-        a, d = [i for i in legs if i != b]
-        u, v = c[a][:2] - c[b][:2], c[d][:2] - c[b][:2]
-        cos = abs(float(u @ v)) / max(float(np.linalg.norm(u) * np.linalg.norm(v)), 1e-9)
-        if best is None or cos < best[0]:
-            best = (cos, a, b, d)
-    cos, a, b, d = best
-    if cos > _RIGHT_ANGLE_COS:
+    frame = prims[base] if base in prims else None
+    if frame is not None:
+        R = frame.T_world_part[:3, :3]
+        horiz = sorted(range(3), key=lambda k: abs(R[2, k]))[:2]
+        axes = np.stack([R[:, k] for k in horiz], axis=1)
+        mid = frame.center @ axes
+    else:
+        axes, mid = np.eye(3)[:, :2], np.mean([prims[i].center[:2] for i in legs], axis=0)
+    c = {i: prims[i].center @ axes for i in legs}
+    tol = 2 * max(float(np.max(np.sort(prims[i].size)[:2])) for i in legs)
+    xs = _two_values(np.array([v[0] for v in c.values()]), float(mid[0]), tol)
+    ys = _two_values(np.array([v[1] for v in c.values()]), float(mid[1]), tol)
+    if xs is None or ys is None:
         return dict(prims), {}
-    corner = c[a] + c[d] - c[b]
-    corner[2] = c[b][2]
-    leg = missing[0]
-    if len(leg.points) and np.linalg.norm(leg.points.mean(axis=0)[:2] - corner[:2]) > config.completion_reach:
+    corners = [np.array([x, y]) for x in xs for y in ys]
+    free = [q for q in corners if min(np.linalg.norm(q - v) for v in c.values()) > tol]
+    if len(free) != len(missing) or len(free) + len(legs) != 4:
         return dict(prims), {}
-    T = prims[b].T_world_part.copy()
-    T[:3, 3] = corner
-    out = dict(prims)
-    out[leg.part_id] = Primitive(prims[b].kind, prims[b].size, T)
-    return out, {leg.part_id: corner}
+    out, placed = dict(prims), {}
+    order = sorted(missing, key=lambda p: len(p.points) == 0)       # legs with points choose first
+    for leg in order:
+        if len(leg.points):
+            q = leg.points.mean(axis=0) @ axes
+            k = int(np.argmin([np.linalg.norm(f - q) for f in free]))
+            if np.linalg.norm(free[k] - q) > config.completion_reach:
+                continue
+        else:
+            k = 0
+        corner = free.pop(k)
+        src = min(legs, key=lambda i: float(np.linalg.norm(c[i] - corner)))
+        T = prims[src].T_world_part.copy()
+        T[:3, 3] = prims[src].center + axes @ (corner - c[src])
+        out[leg.part_id] = Primitive(prims[src].kind, prims[src].size, T)
+        placed[leg.part_id] = T[:3, 3].copy()
+    return out, placed

@@ -107,7 +107,7 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
             log.debug("object %d part %d (%s): %s, score %.4f", obj.id, p.part_id, p.label, name, score.total)
         prims = {i: f[0] for i, f in fits.items()}
         pts_by_part = {p.part_id: p.points for p in obj.parts}
-        prims, placed = complete_missing_legs(obj.category, prims, labels, obj.skipped, config)
+        prims, placed = complete_missing_legs(obj.category, prims, labels, obj.skipped, config, base)
         for i, centre in placed.items():
             leg = next(p for p in obj.skipped if p.part_id == i)
             labels[i] = leg.label
@@ -115,7 +115,7 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
             pts_by_part[i] = leg.points if len(leg.points) >= 3 else prims[i].sample_surface(
                 config.surface_samples, np.random.default_rng(_part_seed(seed, i)))[0]
             warn(f"{link_name(obj.category, obj.id, leg.label, i)}: part {i} ({leg.label}) has "
-                 f"{len(leg.points)} points; placed at the fourth corner of its three fitted legs "
+                 f"{len(leg.points)} points; placed at the free corner of its fitted legs' rectangle "
                  f"({centre[0]:.3f}, {centre[1]:.3f})")
         prims, completed = complete_vertical_parts(prims, labels, config)
         for i, (down, up) in completed.items():

@@ -120,3 +120,18 @@ def test_a_handle_bar_is_no_rim_both_ends_of_its_noise_are_pulled_in():
     import dataclasses
     anywhere = dataclasses.replace(CFG, rim_min_extent=0.0)     # the rule without its size guard
     assert not denoised_box(raw, pts, anywhere, nrm).isclose(denoised_box(raw, pts, anywhere))
+
+
+def test_two_hidden_legs_are_placed_from_two_seen_ones_and_the_frame():
+    corners = {2: (0.0, 0.0), 3: (1.8, 0.0), 4: (1.8, 1.2), 5: (0.0, 1.2)}
+    frame = Primitive("box", [1.9, 1.3, 0.1], at(0.9, 0.6, 0.2))
+    for seen in ((2, 3), (2, 4)):                       # adjacent (mirrored about the frame) and diagonal
+        prims = {i: Primitive("box", [0.06, 0.06, 0.15], at(*corners[i], 0.075)) for i in seen}
+        prims[1] = frame
+        labels = {i: ("frame" if i == 1 else "leg") for i in prims}
+        hidden = [i for i in corners if i not in seen]
+        skipped = tuple(PartPoints(1, i, "leg", np.array([[*corners[i], 0.05]] * 3)) for i in hidden)
+        out, placed = complete_missing_legs("bed", prims, labels, skipped, CFG, base=1)
+        assert set(placed) == set(hidden), seen
+        for i in hidden:
+            assert np.allclose(out[i].center, [*corners[i], 0.075], atol=1e-9), (seen, i)
