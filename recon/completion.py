@@ -14,7 +14,9 @@ drawer/door (else any part) that it stands in front of, when that face is within
 A leg the camera hardly saw at all (under a bed frame: fewer than ``min_part_points`` points, maybe
 none) is still declared in labels.json; a bed, table or chair stands on four legs at the corners of a
 rectangle, so missing legs are placed at the corners the fitted ones leave free, as copies of the
-nearest fitted leg (``complete_missing_legs``).
+nearest fitted leg (``complete_missing_legs``). A bed frame's head end is hidden under the mattress and
+behind the headboard; the frame is extended along its length to the headboard when that lies within
+``completion_reach`` beyond it (``complete_reaching_parts``).
 Nothing else is changed.
 """
 
@@ -27,7 +29,7 @@ from recon.config import ReconConfig
 from recon.primitive import Primitive, PrimitiveKind
 
 __all__ = ["VERTICAL_SPAN_LABELS", "MOUNTED_LABELS", "LEGGED_CATEGORIES", "complete_vertical_parts",
-           "complete_mounted_parts", "complete_missing_legs"]
+           "complete_mounted_parts", "complete_missing_legs", "complete_reaching_parts"]
 
 VERTICAL_SPAN_LABELS = frozenset({"leg"})
 MOUNTED_LABELS = frozenset({"handle", "knob"})
@@ -212,3 +214,31 @@ def complete_missing_legs(category: str, prims: dict[int, Primitive], labels: di
         out[leg.part_id] = Primitive(prims[src].kind, prims[src].size, T)
         placed[leg.part_id] = T[:3, 3].copy()
     return out, placed
+
+
+_REACHES = {("frame", "headboard")}
+"""(label, label it reaches): a bed frame starts at its headboard."""
+
+
+def complete_reaching_parts(prims: dict[int, Primitive], labels: dict[int, str],
+                            config: ReconConfig) -> tuple[dict[int, Primitive], dict[int, float]]:
+    """Extend a box (a bed frame) along a horizontal axis of its own to the part it reaches by template
+    (its headboard) when that part's near face lies beyond the box's end by more than ``theta_d`` and at
+    most ``completion_reach`` (m), facing it. Returns (new prims, {part_id: metres added})."""
+    out, changes = dict(prims), {}
+    for i, prim in prims.items():
+        targets = [j for j in prims if (labels[i], labels[j]) in _REACHES]
+        if prim.kind is not PrimitiveKind.BOX or not targets:
+            continue
+        R = prim.T_world_part[:3, :3]
+        for j in targets:
+            d = prims[j].center - prim.center
+            k = max((a for a in range(3) if abs(R[2, a]) < 0.5), key=lambda a: abs(float(R[:, a] @ d)))
+            axis = R[:, k] * np.sign(R[:, k] @ d)
+            end = float(np.max(prim.corners() @ axis))
+            near = float(np.min(prims[j].corners() @ axis))
+            gap = near - end
+            if config.theta_d < gap <= config.completion_reach:
+                out[i] = _extended(out[i], k, axis, gap)
+                changes[i] = gap
+    return out, changes

@@ -13,7 +13,8 @@ from collections.abc import Callable
 
 import numpy as np
 
-from recon.completion import complete_missing_legs, complete_mounted_parts, complete_vertical_parts
+from recon.completion import (complete_missing_legs, complete_mounted_parts, complete_reaching_parts,
+                              complete_vertical_parts)
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.fitting import FitScore, fit_part
@@ -117,6 +118,9 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
             warn(f"{link_name(obj.category, obj.id, leg.label, i)}: part {i} ({leg.label}) has "
                  f"{len(leg.points)} points; placed at the free corner of its fitted legs' rectangle "
                  f"({centre[0]:.3f}, {centre[1]:.3f})")
+        prims, reached = complete_reaching_parts(prims, labels, config)
+        for i, gap in reached.items():
+            log.info("object %d part %d (%s): extended %.3f m to the part it reaches", obj.id, i, labels[i], gap)
         prims, completed = complete_vertical_parts(prims, labels, config)
         for i, (down, up) in completed.items():
             log.info("object %d part %d (%s): extended %.3f m down, %.3f m up to its supports",

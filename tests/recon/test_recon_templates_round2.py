@@ -135,3 +135,17 @@ def test_two_hidden_legs_are_placed_from_two_seen_ones_and_the_frame():
         assert set(placed) == set(hidden), seen
         for i in hidden:
             assert np.allclose(out[i].center, [*corners[i], 0.075], atol=1e-9), (seen, i)
+
+
+def test_a_bed_frame_hidden_at_its_head_end_is_extended_to_its_headboard():
+    from recon.completion import complete_reaching_parts
+
+    frame = Primitive("box", [1.48, 1.693, 0.15], at(2.428, 1.325, 0.294))   # random/4 bed15: 26 cm short
+    head = Primitive("box", [1.521, 0.05, 1.048], at(2.428, 2.446, 0.527))
+    labels = {80: "frame", 85: "headboard"}
+    out, changes = complete_reaching_parts({80: frame, 85: head}, labels, CFG)
+    assert changes[80] == pytest.approx(2.421 - (1.325 + 1.693 / 2))
+    assert out[80].corners()[:, 1].max() == pytest.approx(2.421)
+    assert out[80].corners()[:, 1].min() == pytest.approx(1.325 - 1.693 / 2)
+    far = Primitive("box", [1.521, 0.05, 1.048], at(2.428, 2.446 + 0.5, 0.527))     # beyond the reach
+    assert complete_reaching_parts({80: frame, 85: far}, labels, CFG)[1] == {}
