@@ -143,6 +143,9 @@ class ReconConfig:
     fitted primitive)."""
     carcass_wall: float = 0.018
     """Panel thickness (m) of a hollow carcass (18 mm particle board)."""
+    front_depth_tolerance: float = 0.04
+    """A drawer/door front opens its carcass face only when it reaches at most this deep (m) into the
+    body (an inset front sits within the panel's thickness plus noise)."""
     drawer_wall: float = 0.012
     """Wall thickness (m) of a drawer box."""
     drawer_gap: float = 0.005

@@ -103,3 +103,11 @@ def test_reconstructed_drawer_box_slides_free_in_its_carcass_in_pybullet(kitchen
         assert moved == 1
     finally:
         pb.disconnect(cid)
+
+
+def test_a_front_sunk_deep_into_its_body_opens_no_hole():
+    sunk = box([0.42, -0.375, 0.425], [0.43, 0.375, 0.775])     # 7-8 cm inside the +x face
+    panels = carcass_shapes(BODY, [(X, sunk)], CFG)
+    assert any(q.contains(np.array([[0.49, 0.0, 0.6]]))[0] for q in panels)   # the face stays closed
+    inset = box([0.48, -0.375, 0.425], [0.5, 0.375, 0.775])     # flush inset front: opens
+    assert not any(q.contains(np.array([[0.49, 0.0, 0.6]]))[0] for q in carcass_shapes(BODY, [(X, inset)], CFG))
