@@ -25,13 +25,11 @@ def _estimates(rec, solids: bool):
     out = []
     for o in rec.objects:
         base = estimate_from_reconstruction(o)
-        if not solids:
-            out.append(base)
-            continue
         prims, ids = [], []
         for p in o.parts:
-            prims += list(p.solids)
-            ids += [p.part_id] * len(p.solids)
+            shapes = p.solids if solids else (p.primitive,)
+            prims += list(shapes)
+            ids += [p.part_id] * len(shapes)
         out.append(ObjectEstimate(o.id, o.category, tuple(prims), base.joints, base.contact_scores,
                                   base.seconds, tuple(ids)))
     return out
