@@ -144,8 +144,8 @@ class ReconConfig:
     carcass_wall: float = 0.018
     """Panel thickness (m) of a hollow carcass (18 mm particle board)."""
     front_depth_tolerance: float = 0.04
-    """A drawer/door front opens its carcass face only when it reaches at most this deep (m) into the
-    body (an inset front sits within the panel's thickness plus noise)."""
+    """A drawer/door front opens its carcass face only when its outer face lies at most this deep (m)
+    inside the body's face (an inset front is flush; noise moves it a centimetre or two)."""
     drawer_wall: float = 0.012
     """Wall thickness (m) of a drawer box."""
     drawer_gap: float = 0.005

@@ -73,8 +73,8 @@ def carcass_shapes(body: Primitive, fronts: list[tuple[np.ndarray, Primitive]],
     """The body as panels of ``carcass_wall`` (m). ``fronts`` are (outward normal (3,) world, front
     primitive) of its drawers and doors: the face with that normal gets openings where the fronts'
     outlines are, the rest of it stays a panel (a microwave's control panel, the stiles between doors).
-    A front reaching deeper than ``front_depth_tolerance`` into the body opens nothing: the opening
-    would stay open around it (measured: a realistic microwave door fitted 8 cm inside its body made
+    A front whose outer face lies deeper than ``front_depth_tolerance`` inside the body opens nothing:
+    the opening would stay open around it (measured: a realistic microwave door fitted 8 cm inside its body made
     the object's IoU 0.63 -> 0.17).
     ``(body,)`` unchanged when it is no box, no face is open, or it is too thin to be hollow."""
     if body.kind is not PrimitiveKind.BOX or min(body.size) < 4 * config.carcass_wall:
@@ -88,8 +88,8 @@ def carcass_shapes(body: Primitive, fronts: list[tuple[np.ndarray, Primitive]],
             continue
         a, s = face
         flo, fhi = _box_bounds(prim, R)
-        depth = (hi[a] - flo[a]) if s > 0 else (fhi[a] - lo[a])     # how deep the front reaches into the body
-        if depth > config.front_depth_tolerance:
+        inset = (hi[a] - fhi[a]) if s > 0 else (flo[a] - lo[a])     # how far the front's outside lies inside the body
+        if inset > config.front_depth_tolerance:
             continue        # a front sunk into its body (a misfit): an opening there would not be closed
         holes.setdefault(face, []).append((flo, fhi))
     if not holes:
