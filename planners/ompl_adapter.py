@@ -36,6 +36,25 @@ class MotionResult:
     seconds: float
 
 
+def _seeded_box_space(seed: int, lower, upper) -> "ob.RealVectorStateSpace":
+    """A ``RealVectorStateSpace`` bounded by ``lower``/``upper`` ((n,) each), with OMPL's seed set to ``seed``.
+
+    Reseeding OMPL's seed generator makes every RNG created afterwards (planner, samplers) deterministic;
+    OMPL logs an error that "generation already started" on every call after the first, which is harmless
+    here, so logging is silenced around it."""
+    ou.setLogLevel(ou.LOG_NONE)
+    ou.RNG.setSeed(int(seed) % (2 ** 31 - 1) + 1)
+    ou.setLogLevel(ou.LOG_WARN)
+    n = len(lower)
+    space = ob.RealVectorStateSpace(n)
+    bounds = ob.RealVectorBounds(n)
+    for i in range(n):
+        bounds.setLow(i, float(lower[i]))
+        bounds.setHigh(i, float(upper[i]))
+    space.setBounds(bounds)
+    return space
+
+
 def plan_joint_path(start: np.ndarray, goal: np.ndarray, lower: np.ndarray, upper: np.ndarray, is_valid, *,
                     time_limit: float, seed: int, planner: str = "RRTConnect",
                     resolution: float = 0.01) -> MotionResult:
@@ -47,17 +66,7 @@ def plan_joint_path(start: np.ndarray, goal: np.ndarray, lower: np.ndarray, uppe
     """
     dof = len(start)
     t0 = time.perf_counter()
-    # Reseeding OMPL's seed generator makes every RNG created below (planner, samplers) deterministic; OMPL
-    # logs an error that "generation already started" on every call after the first, which is harmless here.
-    ou.setLogLevel(ou.LOG_NONE)
-    ou.RNG.setSeed(int(seed) % (2 ** 31 - 1) + 1)
-    ou.setLogLevel(ou.LOG_WARN)
-    space = ob.RealVectorStateSpace(dof)
-    bounds = ob.RealVectorBounds(dof)
-    for i in range(dof):
-        bounds.setLow(i, float(lower[i]))
-        bounds.setHigh(i, float(upper[i]))
-    space.setBounds(bounds)
+    space = _seeded_box_space(seed, lower, upper)
     ss = og.SimpleSetup(space)
     buf = np.empty(dof)
 
@@ -113,15 +122,7 @@ def plan_constrained_path(start: np.ndarray, goal: np.ndarray, lower: np.ndarray
     """
     n = len(start)
     t0 = time.perf_counter()
-    ou.setLogLevel(ou.LOG_NONE)
-    ou.RNG.setSeed(int(seed) % (2 ** 31 - 1) + 1)
-    ou.setLogLevel(ou.LOG_WARN)
-    rv = ob.RealVectorStateSpace(n)
-    bounds = ob.RealVectorBounds(n)
-    for i in range(n):
-        bounds.setLow(i, float(lower[i]))
-        bounds.setHigh(i, float(upper[i]))
-    rv.setBounds(bounds)
+    rv = _seeded_box_space(seed, lower, upper)
     constraint = _PoseConstraint(n, co_dim, function, jacobian)
     constraint.setTolerance(tolerance)
     css = ob.ProjectedStateSpace(rv, constraint)
