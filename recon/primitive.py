@@ -15,7 +15,7 @@ from enum import Enum
 
 import numpy as np
 
-__all__ = ["PrimitiveKind", "Primitive", "SurfacePlane"]
+__all__ = ["PrimitiveKind", "Primitive", "SurfacePlane", "volume_weighted_centre"]
 
 
 class PrimitiveKind(str, Enum):
@@ -43,6 +43,13 @@ class SurfacePlane:
         return (np.allclose(self.normal, other.normal, atol=atol) and abs(self.d - other.d) <= atol
                 and self.polygon.shape == other.polygon.shape
                 and np.allclose(self.polygon, other.polygon, atol=atol))
+
+
+def volume_weighted_centre(primitives) -> np.ndarray:
+    """(3,) float, metres, in the primitives' frame: the mean of their centres weighted by their volumes."""
+    w = np.array([p.volume for p in primitives])
+    c = np.array([p.T_world_part[:3, 3] for p in primitives])
+    return (w[:, None] * c).sum(axis=0) / w.sum()
 
 
 def _check_pose(T: np.ndarray, what: str) -> np.ndarray:

@@ -20,7 +20,7 @@ from typing import Mapping
 import numpy as np
 
 from recon.model import JointEstimate, JointType
-from recon.primitive import Primitive
+from recon.primitive import Primitive, volume_weighted_centre
 
 __all__ = ["TemplatePart", "Template", "TemplateLibrary", "template_from_object", "library_from_generators",
            "DEFAULT_LIBRARY_SEED",
@@ -43,9 +43,7 @@ class TemplatePart:
     @property
     def centre(self) -> np.ndarray:
         """(3,) float, metres, object frame — volume-weighted centre of the part's primitives."""
-        w = np.array([p.volume for p in self.primitives])
-        c = np.array([p.T_world_part[:3, 3] for p in self.primitives])
-        return (w[:, None] * c).sum(axis=0) / w.sum()
+        return volume_weighted_centre(self.primitives)
 
 
 @dataclass(frozen=True, eq=False)

@@ -23,6 +23,7 @@ from recon.metrics.objects import ObjectEstimate
 from recon.metrics.truth import TruthObject
 from recon.metrics.unit_box import unit_box_from_truth
 from recon.metrics.voxel_iou import DEFAULT_VOXEL_RESOLUTION, object_iou
+from recon.primitive import volume_weighted_centre
 
 __all__ = ["PartStatus", "PartMetrics", "evaluate_parts"]
 
@@ -47,11 +48,6 @@ class PartMetrics:
     size_ratio: float
 
 
-def _centre(prims) -> np.ndarray:
-    w = np.array([p.volume for p in prims])
-    return (w[:, None] * np.array([p.T_world_part[:3, 3] for p in prims])).sum(axis=0) / w.sum()
-
-
 def evaluate_parts(truth: TruthObject, estimate: ObjectEstimate, chamfer_samples: int = 2000,
                    resolution: int = DEFAULT_VOXEL_RESOLUTION, seed: int = 0) -> tuple[PartMetrics, ...]:
     """Per-part diagnostics of one object (see the module docstring); empty when the estimate has no
@@ -69,6 +65,6 @@ def evaluate_parts(truth: TruthObject, estimate: ObjectEstimate, chamfer_samples
             part.id, part.label, PartStatus.OK,
             object_chamfer(part.primitives, est, box, chamfer_samples, seed + 2 * k),
             object_iou(part.primitives, est, box, resolution),
-            float(np.linalg.norm(_centre(est) - _centre(part.primitives))),
+            float(np.linalg.norm(volume_weighted_centre(est) - volume_weighted_centre(part.primitives))),
             float(sum(p.volume for p in est) / sum(p.volume for p in part.primitives))))
     return tuple(rows)

@@ -15,7 +15,7 @@ import numpy as np
 
 from recon.metrics.errors import TruthFormatError
 from recon.model import JointEstimate, JointType
-from recon.primitive import Primitive
+from recon.primitive import Primitive, volume_weighted_centre
 
 __all__ = ["TRUTH_FORMAT", "TruthPart", "TruthObject", "TruthScene", "read_truth", "truth_from_dict"]
 
@@ -35,9 +35,7 @@ class TruthPart:
     @property
     def centre(self) -> np.ndarray:
         """(3,) float, metres, world — mean of the part's shape centres weighted by volume."""
-        w = np.array([p.volume for p in self.primitives])
-        c = np.array([p.T_world_part[:3, 3] for p in self.primitives])
-        return (w[:, None] * c).sum(axis=0) / w.sum()
+        return volume_weighted_centre(self.primitives)
 
 
 @dataclass(frozen=True)
