@@ -189,7 +189,7 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
     rec.sample()
 
     def check_slip() -> None:
-        if rec.steps % config.contact_every == 0 and world.attached and rec.T_handle_grasp is not None:
+        if rec.steps % config.record_every == 0 and world.attached and rec.T_handle_grasp is not None:
             slip = float(np.linalg.norm(rec.grasp_point() - world.robot_link_position(robot.tool_link)))
             if slip > config.grasp_break_distance:
                 world.detach()
