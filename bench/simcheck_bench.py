@@ -19,6 +19,7 @@ import tempfile
 import time
 from collections import Counter
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -28,8 +29,41 @@ CATEGORIES = ("cabinet", "microwave", "refrigerator")
 WRONG_KINDS = ("axis30", "wrong_hinge_side", "revolute_as_prismatic", "wider_limits", "blocked_swing")
 
 
-def _tasks_from_truth(truth_json: Path) -> list[tuple[str, str, str]]:
-    """(task string, category, joint type) for every drawer/door of cabinets, microwaves, refrigerators."""
+class TruthRow(NamedTuple):
+    seed: int
+    task: str          # "open-drawer:<joint>"
+    category: str
+    obj: str           # object name, e.g. "cabinet1"
+    cert: object       # simcheck TaskCertificate
+
+
+class ReconRow(NamedTuple):
+    seed: int
+    preset: str        # scan preset
+    task: str
+    category: str
+    obj: str
+    outcome: object    # simcheck TaskCertificate, or a text when no certificate could be made
+
+    @property
+    def ok(self) -> bool:
+        return not isinstance(self.outcome, str) and self.outcome.ok
+
+    @property
+    def key(self) -> str:
+        return self.outcome if isinstance(self.outcome, str) else _reason_key(self.outcome)
+
+
+class WrongRow(NamedTuple):
+    seed: int
+    kind: str          # one of WRONG_KINDS
+    task: str
+    cert: object
+
+
+def _tasks_from_truth(truth_json: Path) -> list[tuple[str, str, str, str]]:
+    """(task string, category, joint type, object name) for every drawer/door of cabinets, microwaves and
+    refrigerators."""
     doc = json.loads(truth_json.read_text())
     out = []
     for o in doc["objects"]:
@@ -38,7 +72,7 @@ def _tasks_from_truth(truth_json: Path) -> list[tuple[str, str, str]]:
         for j in o["joints"]:
             if j["type"] in ("prismatic", "revolute"):
                 kind = "open-drawer" if j["type"] == "prismatic" else "open-door"
-                out.append((f"{kind}:{j['name']}", o["category"], j["type"]))
+                out.append((f"{kind}:{j['name']}", o["category"], j["type"], o["name"]))
     return out
 
 
@@ -71,13 +105,13 @@ def _certify_each(simcheck_certify, scene: Path, tasks: list[str], against: Path
     return list(cert.tasks)
 
 
-def _wrong_estimates(truth: Path, tasks: list[tuple[str, str, str]], tmp: Path) -> list[tuple[str, Path, str, Path]]:
+def _wrong_estimates(truth: Path, tasks: list[tuple[str, str, str, str]], tmp: Path) -> list[tuple[str, Path, str, Path]]:
     """(kind, estimate, task, reference) for the first drawer and the first door of the truth."""
     import simcheck.estimate_faults as wrong
 
-    drawer = next((t.split(":", 1)[1] for t, _, jt in tasks if jt == "prismatic"), None)
-    door = next((t.split(":", 1)[1] for t, c, jt in tasks if jt == "revolute" and c == "refrigerator"),
-                next((t.split(":", 1)[1] for t, _, jt in tasks if jt == "revolute"), None))
+    drawer = next((t.split(":", 1)[1] for t, _, jt, _ in tasks if jt == "prismatic"), None)
+    door = next((t.split(":", 1)[1] for t, c, jt, _ in tasks if jt == "revolute" and c == "refrigerator"),
+                next((t.split(":", 1)[1] for t, _, jt, _ in tasks if jt == "revolute"), None))
     out = []
     if drawer:
         out.append(("axis30", wrong.rotate_axis(truth, drawer, 30.0, tmp / "axis30.urdf"), f"open-drawer:{drawer}", truth))
@@ -90,66 +124,81 @@ def _wrong_estimates(truth: Path, tasks: list[tuple[str, str, str]], tmp: Path) 
     return out
 
 
+def _reconstruction_rows(scene: str, seed: int, preset: str, d: Path, tasks, certify) -> list[tuple]:
+    """Scan scene ``seed`` with ``preset`` into ``d``, reconstruct it, and certify every truth drawer/door
+    on the reconstruction ``--against`` the truth: one (seed, preset, task, category, object, certificate
+    task or failure text) per truth task (a missing joint or a failed reconstruction is a result, not a crash)."""
+    import recon
+    import scenes
+    from simcheck.scene_joints import read_scene_joints
+
+    scenes.make_scene(scene, seed=seed, preset=preset, previews=False, out=d)
+    try:
+        rec = recon.reconstruct(d / "scan.ply", d / "labels.json", seed=seed)
+        rec.write(d / "rec")
+        est = read_scene_joints(d / "rec" / "scene.urdf")
+    except Exception as exc:  # a reconstruction failure is a benchmark result, not a crash
+        return [ReconRow(seed, preset, task, cat, obj, f"reconstruction failed: {type(exc).__name__}: {exc}")
+                for task, cat, _, obj in tasks]
+    rows = []
+    for task, cat, _, obj in tasks:
+        joint = task.split(":", 1)[1]
+        ej = est.get(joint)
+        if ej is None or ej.type not in ("prismatic", "revolute"):
+            rows.append(ReconRow(seed, preset, task, cat, obj, "joint missing or fixed in the reconstruction"))
+            continue
+        kind = "open-drawer" if ej.type == "prismatic" else "open-door"
+        try:
+            t = certify(d / "rec" / "scene.urdf", [f"{kind}:{joint}"], against=d / "truth.urdf", seed=seed,
+                        images=False).tasks[0]
+            rows.append(ReconRow(seed, preset, task, cat, obj, t))
+        except Exception as exc:
+            rows.append(ReconRow(seed, preset, task, cat, obj, f"input error: {type(exc).__name__}: {exc}"))
+    return rows
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m bench.simcheck_bench", description=__doc__.split("\n")[0])
     p.add_argument("--scene", default="kitchen", help="built-in scene to generate (default kitchen)")
-    p.add_argument("--seeds", type=int, default=6, help="scenes on which every drawer/door is certified on truth")
-    p.add_argument("--recon-seeds", type=int, default=3, help="of those, how many are scanned + reconstructed")
+    p.add_argument("--seeds", type=int, default=10,
+                   help="scenes on which every drawer/door is certified on truth (10 kitchens = 30 cabinets, "
+                        "microwaves and refrigerators)")
+    p.add_argument("--recon-seeds", type=int, default=10, help="of those, how many are scanned + reconstructed")
+    p.add_argument("--recon-presets", default="clean,realistic",
+                   help="scan presets reconstructed for each of those seeds, comma-separated")
     p.add_argument("--wrong-seeds", type=int, default=2, help="of those, on how many wrong estimates are built")
     p.add_argument("--out", default=None, help="keep the generated files here (default: a temp folder)")
     args = p.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
     import scenes
     from simcheck.certification import certify
-    from simcheck.scene_joints import read_scene_joints
 
+    presets = [x for x in args.recon_presets.split(",") if x]
     tmp_ctx = tempfile.TemporaryDirectory(prefix="simcheck_bench_") if args.out is None else None
     root = Path(args.out or tmp_ctx.name)
     truth_rows, recon_rows, wrong_rows = [], [], []
     t_start = time.perf_counter()
     for seed in range(args.seeds):
         d = root / f"{args.scene}{seed}"
-        scan = seed < args.recon_seeds
-        scenes.make_scene(args.scene, seed=seed, scan=scan, previews=False, out=d)
+        scenes.make_scene(args.scene, seed=seed, scan=False, previews=False, out=d)
         tasks = _tasks_from_truth(d / "truth.json")
-        for (task, cat, jt), t in zip(tasks, _certify_each(certify, d / "truth.urdf", [x[0] for x in tasks], None, seed)):
-            truth_rows.append((seed, task, cat, t))
+        for (task, cat, _, obj), t in zip(tasks, _certify_each(certify, d / "truth.urdf", [x[0] for x in tasks], None, seed)):
+            truth_rows.append(TruthRow(seed, task, cat, obj, t))
         print(f"[{time.perf_counter() - t_start:6.0f} s] {args.scene} seed {seed}: truth "
-              f"{sum(r[3].ok for r in truth_rows if r[0] == seed)}/{len(tasks)} certified", flush=True)
-        if scan:
-            try:
-                import recon
-                rec = recon.reconstruct(d / "scan.ply", d / "labels.json", seed=seed)
-                rec.write(d / "rec")
-                est = read_scene_joints(d / "rec" / "scene.urdf")
-            except Exception as exc:  # a reconstruction failure is a benchmark result, not a crash
-                for task, cat, jt in tasks:
-                    recon_rows.append((seed, task, cat, f"reconstruction failed: {type(exc).__name__}"))
-                est = None
-            if est is not None:
-                for task, cat, jt in tasks:
-                    joint = task.split(":", 1)[1]
-                    ej = est.get(joint)
-                    if ej is None or ej.type not in ("prismatic", "revolute"):
-                        recon_rows.append((seed, task, cat, "joint missing or fixed in the reconstruction"))
-                        continue
-                    kind = "open-drawer" if ej.type == "prismatic" else "open-door"
-                    try:
-                        t = certify(d / "rec" / "scene.urdf", [f"{kind}:{joint}"], against=d / "truth.urdf",
-                                    seed=seed, images=False).tasks[0]
-                        recon_rows.append((seed, task, cat, t))
-                    except Exception as exc:
-                        recon_rows.append((seed, task, cat, f"input error: {type(exc).__name__}"))
-            print(f"[{time.perf_counter() - t_start:6.0f} s] {args.scene} seed {seed}: reconstruction "
-                  f"{sum(1 for r in recon_rows if r[0] == seed and not isinstance(r[3], str) and r[3].ok)}"
-                  f"/{len(tasks)} certified against truth", flush=True)
+              f"{sum(r.cert.ok for r in truth_rows if r.seed == seed)}/{len(tasks)} certified", flush=True)
+        for preset in presets if seed < args.recon_seeds else ():
+            rows = _reconstruction_rows(args.scene, seed, preset, d / preset, tasks, certify)
+            recon_rows += rows
+            print(f"[{time.perf_counter() - t_start:6.0f} s] {args.scene} seed {seed}: {preset} reconstruction "
+                  f"{sum(r.ok for r in rows)}/{len(tasks)} certified "
+                  f"against truth", flush=True)
         if seed < args.wrong_seeds:
             (d / "wrong").mkdir(exist_ok=True)
             for kind, est_urdf, task, ref in _wrong_estimates(d / "truth.urdf", tasks, d / "wrong"):
                 t = certify(est_urdf, [task], against=ref, seed=seed, images=False).tasks[0]
-                wrong_rows.append((seed, kind, task, t))
+                wrong_rows.append(WrongRow(seed, kind, task, t))
             print(f"[{time.perf_counter() - t_start:6.0f} s] {args.scene} seed {seed}: wrong estimates "
-                  f"{sum(1 for r in wrong_rows if r[0] == seed and r[3].ok)} certified (must be 0)", flush=True)
+                  f"{sum(r.cert.ok for r in wrong_rows if r.seed == seed)} certified (must be 0)", flush=True)
 
     _report(truth_rows, recon_rows, wrong_rows)
     ok = _targets(truth_rows, wrong_rows)
@@ -159,7 +208,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _report(truth_rows, recon_rows, wrong_rows) -> None:
-    tasks = [r[3] for r in truth_rows]
+    tasks = [r.cert for r in truth_rows]
     planned = [t for t in tasks if t.plan_status == "OK"]
     executed = [t for t in planned if "execute" in t.timings]
     plan_s = [t.timings["plan"] for t in tasks]
@@ -187,33 +236,47 @@ def _report(truth_rows, recon_rows, wrong_rows) -> None:
     rows = []
     for cat in CATEGORIES:
         for kind in ("open-drawer", "open-door"):
-            sel = [r[3] for r in truth_rows if r[2] == cat and r[3].kind == kind]
+            sel = [r for r in truth_rows if r.category == cat and r.cert.kind == kind]
             if sel:
-                rows.append([cat, kind, len(sel), sum(t.ok for t in sel), sum(t.ok for t in sel) / len(sel)])
-    rows.append(["all", "", len(tasks), sum(t.ok for t in tasks), sum(t.ok for t in tasks) / max(len(tasks), 1)])
-    _table("Certified on their own truth", ["category", "task", "n", "certified", "share"], rows)
+                n_ok = sum(r.cert.ok for r in sel)
+                rows.append([cat, kind, _objects(sel), len(sel), n_ok, n_ok / len(sel)])
+    rows.append(["all", "", _objects(truth_rows), len(tasks), sum(t.ok for t in tasks),
+                 sum(t.ok for t in tasks) / max(len(tasks), 1)])
+    _table("Certified on their own truth", ["category", "task", "objects", "n", "certified", "share"], rows)
     _tally("Outcomes on truth (every failure reason)", [_reason_key(t) for t in tasks])
     for r in truth_rows:
-        if not r[3].ok:
-            print(f"    seed {r[0]} {r[1]}: {r[3].reason[:220]}")
+        if not r.cert.ok:
+            print(f"    seed {r.seed} {r.task}: {r.cert.reason[:220]}")
     if recon_rows:
-        keys = [r[3] if isinstance(r[3], str) else _reason_key(r[3]) for r in recon_rows]
-        n_ok = sum(1 for k in keys if k == "certified")
-        _table("Reconstructions --against truth", ["n", "certified", "share"],
-               [[len(keys), n_ok, n_ok / max(len(keys), 1)]])
-        _tally("Outcomes on reconstructions (every failure reason)", keys)
-        for r in recon_rows:
-            if not isinstance(r[3], str) and not r[3].ok:
-                print(f"    seed {r[0]} {r[1]}: {r[3].reason[:220]}")
+        rows = []
+        presets = list(dict.fromkeys(r.preset for r in recon_rows))
+        for preset in presets:
+            for cat in CATEGORIES + ("all",):
+                sel = [r for r in recon_rows if r.preset == preset and cat in ("all", r.category)]
+                n_ok = sum(r.ok for r in sel)
+                rows.append([preset, cat, _objects(sel), len(sel), n_ok, n_ok / max(len(sel), 1)])
+        _table("Reconstructions --against truth (scan -> recon -> plan on the estimate, execute on the truth)",
+               ["scan", "category", "objects", "drawers+doors", "certified", "share"], rows)
+        for preset in presets:
+            sel = [r for r in recon_rows if r.preset == preset]
+            _tally(f"Outcomes on {preset} reconstructions (every failure reason)", [r.key for r in sel])
+            for r in sel:
+                if not isinstance(r.outcome, str) and not r.ok:
+                    print(f"    seed {r.seed} {r.task}: {r.outcome.reason[:220]}")
     if wrong_rows:
         rows = []
         for kind in WRONG_KINDS:
-            sel = [r[3] for r in wrong_rows if r[1] == kind]
+            sel = [r.cert for r in wrong_rows if r.kind == kind]
             rows.append([kind, len(sel), sum(t.ok for t in sel), sum(t.status.value == "failed" for t in sel),
                          sum(t.status.value == "not-planned" for t in sel),
                          sum(_points_at_fault(kind, t.reason) for t in sel)])
         _table("Wrong estimates --against truth", ["kind", "n", "CERTIFIED (false)", "failed", "not-planned",
                                                    "reason names the fault"], rows)
+
+
+def _objects(rows) -> int:
+    """Distinct objects (seed, object name) among rows."""
+    return len({(r.seed, r.obj) for r in rows})
 
 
 def _speed_table(executed) -> None:
@@ -252,13 +315,13 @@ def _tally(title: str, keys: list[str]) -> None:
 
 
 def _targets(truth_rows, wrong_rows) -> bool:
-    tasks = [r[3] for r in truth_rows]
+    tasks = [r.cert for r in truth_rows]
     share = sum(t.ok for t in tasks) / max(len(tasks), 1)
     drawers = [t.timings["total"] for t in tasks if t.kind == "open-drawer" and t.plan_status == "OK"]
     rtf = [t.timings["simulated"] / t.timings["execute"] for t in tasks if "execute" in t.timings]
     rtf_cpu = [t.timings["simulated"] / t.timings["execute_cpu"] for t in tasks if t.timings.get("execute_cpu", 0) > 0]
     approach = [t.timings["planner_approach"] for t in tasks if "planner_approach" in t.timings]
-    false_certs = sum(r[3].ok for r in wrong_rows)
+    false_certs = sum(r.cert.ok for r in wrong_rows)
     checks = [
         (">= 95% certified on truth", share >= 0.95, f"{share:.1%} of {len(tasks)}"),
         ("approach plan median <= 1 s", bool(approach) and _pct(approach, 50) <= 1.0, f"{_pct(approach, 50):.2f} s"),
