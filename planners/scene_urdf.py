@@ -58,8 +58,11 @@ class Geometry:
 
 @dataclass(frozen=True)
 class LinkInfo:
+    """A URDF link: its ``<collision>`` ``geometries`` (what planning checks) and its ``<visual>`` ones."""
+
     name: str
     geometries: tuple[Geometry, ...]
+    visuals: tuple[Geometry, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -204,9 +207,9 @@ def read_scene_urdf(path) -> SceneDescription:
         if name in links:
             raise SceneURDFError(f"{where}: link {name!r} is defined twice")
         geoms = tuple(_geometry(c, name, i, path.parent, where) for i, c in enumerate(el.findall("collision")))
-        for i, v in enumerate(el.findall("visual")):   # validated too: a broken visual breaks every loader
-            _geometry(v, name, i, path.parent, f"{where} (visual)")
-        links[name] = LinkInfo(name, geoms)
+        # visuals are validated too: a broken visual breaks every loader
+        visuals = tuple(_geometry(v, name, i, path.parent, f"{where} (visual)") for i, v in enumerate(el.findall("visual")))
+        links[name] = LinkInfo(name, geoms, visuals)
     joints: dict[str, JointInfo] = {}
     children: set[str] = set()
     for el in root_el.findall("joint"):
@@ -249,4 +252,9 @@ def read_scene_urdf(path) -> SceneDescription:
     roots = [ln for ln in links if ln not in children]
     if len(roots) != 1:
         raise SceneURDFError(f"{where}: expected one root link, found {roots}")
-    return SceneDescription(path=path, links=links, joints=joints, root=roots[0])
+    scene = SceneDescription(path=path, links=links, joints=joints, root=roots[0])
+    cut_off = set(links) - set(scene.subtree_links(roots[0]))
+    if cut_off:
+        raise SceneURDFError(f"{where}: links {sorted(cut_off)} are not below the root link {roots[0]!r} "
+                             f"(their joints form a cycle)")
+    return scene

@@ -7,7 +7,6 @@ the reconstruction are drawn by the same code.
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -81,71 +80,30 @@ def solids_from_truth(truth: dict, source: str = "truth.json") -> list[Solid]:
     return solids
 
 
-def _T_from_origin(el: ET.Element | None) -> np.ndarray:
-    T = np.eye(4)
-    if el is None:
-        return T
-    xyz = np.array([float(v) for v in el.get("xyz", "0 0 0").split()])
-    rpy = [float(v) for v in el.get("rpy", "0 0 0").split()]
-    T[:3, :3] = trimesh.transformations.euler_matrix(*rpy, axes="sxyz")[:3, :3]
-    T[:3, 3] = xyz
-    return T
-
-
 def solids_from_urdf(path: str | Path) -> list[Solid]:
     """Visual primitives of every link of a scene URDF at joint values 0 (the scanned state).
 
-    Reads the XML directly (forward kinematics over the joint origins), so a URDF that PyBullet
-    would load is enough; meshes are skipped (a scene URDF has none).
+    Read by :func:`planners.scene_urdf.read_scene_urdf`, the project's one URDF reader; meshes are skipped
+    (a scene URDF has none).
+
+    Raises:
+        ArtifactError: the file is missing or malformed (names the file and the link or joint).
     """
-    path = Path(path)
+    from planners.errors import SceneURDFError
+    from planners.scene_urdf import read_scene_urdf
+
     try:
-        root = ET.parse(path).getroot()
-    except (OSError, ET.ParseError) as exc:
-        raise ArtifactError(f"{path}: cannot read URDF ({exc})") from exc
-    parent_of: dict[str, tuple[str, np.ndarray]] = {}
-    for joint in root.findall("joint"):
-        parent, child = joint.find("parent"), joint.find("child")
-        if parent is None or child is None:
-            raise ArtifactError(f"{path}: joint {joint.get('name')!r} lacks <parent> or <child>")
-        parent_of[child.get("link")] = (parent.get("link"), _T_from_origin(joint.find("origin")))
-
-    cache: dict[str, np.ndarray] = {}
-
-    def T_world(link: str) -> np.ndarray:
-        chain, seen = [], set()  # walk up to the root (or a cached link), then compose downwards
-        while link not in cache and link in parent_of:
-            if link in seen:
-                raise ArtifactError(f"{path}: the joints around link {link!r} form a cycle")
-            seen.add(link)
-            chain.append(link)
-            link = parent_of[link][0]
-        T = cache.get(link, np.eye(4))
-        for child in reversed(chain):
-            T = T @ parent_of[child][1]
-            cache[child] = T
-        return T
-
+        scene = read_scene_urdf(path)
+    except SceneURDFError as exc:
+        raise ArtifactError(str(exc)) from exc
     solids: list[Solid] = []
-    for link in root.findall("link"):
-        name = link.get("name", "")
+    for name, link in scene.links.items():
         parsed = parse_link_name(name)
         label = parsed["label"] if parsed else ""
-        for visual in link.findall("visual"):
-            geom = visual.find("geometry")
-            if geom is None or len(geom) == 0:
-                continue
-            g = geom[0]
-            where = f"{path}: link {name!r} visual"
-            if g.tag == "box":
-                shape = {"type": "box", "size": [float(v) for v in g.get("size", "").split()]}
-            elif g.tag in ("cylinder", "sphere"):
-                shape = {"type": g.tag, "radius": float(g.get("radius", 0)),
-                         "length": float(g.get("length", 0) or 0)}
-            else:
-                continue  # meshes are not drawn
-            kind, size = _size_of_shape(shape, where)
-            solids.append(Solid(kind, size, T_world(name) @ _T_from_origin(visual.find("origin")), name, label))
+        T_world_link = scene.T_world_link(name)
+        for g in link.visuals:
+            if g.kind in ("box", "cylinder", "sphere"):
+                solids.append(Solid(g.kind, np.asarray(g.size, dtype=float), T_world_link @ g.T_link_geom, name, label))
     return solids
 
 

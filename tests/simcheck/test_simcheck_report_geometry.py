@@ -38,18 +38,24 @@ def test_malformed_urdf_is_rejected_naming_file_and_link(tmp_path):
     bad = tmp_path / "bad.urdf"
     bad.write_text('<robot name="r"><link name="a"><visual><geometry><box size="0.1 -1 0.1"/></geometry>'
                    "</visual></link></robot>")
-    with pytest.raises(ArtifactError, match=r"bad\.urdf: link 'a' visual: box size must be 3 positive numbers"):
+    with pytest.raises(ArtifactError, match=r"bad\.urdf \(visual\): link 'a' box has a non-positive size"):
         solids_from_urdf(bad)
     (tmp_path / "x.urdf").write_text("<robot><link")
-    with pytest.raises(ArtifactError, match=r"x\.urdf: cannot read URDF"):
+    with pytest.raises(ArtifactError, match=r"x\.urdf: not valid XML"):
         solids_from_urdf(tmp_path / "x.urdf")
     loop = tmp_path / "loop.urdf"
     box = '<visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
     loop.write_text(f'<robot name="r"><link name="a">{box}</link><link name="b">{box}</link>'
                     '<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>'
                     '<joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint></robot>')
-    with pytest.raises(ArtifactError, match=r"loop\.urdf: the joints around link '[ab]' form a cycle"):
+    with pytest.raises(ArtifactError, match=r"loop\.urdf: expected one root link"):
         solids_from_urdf(loop)
+    cycle = tmp_path / "cycle.urdf"   # a root, and two links hanging from each other
+    cycle.write_text(f'<robot name="r"><link name="root"/><link name="a">{box}</link><link name="b">{box}</link>'
+                     '<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>'
+                     '<joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint></robot>')
+    with pytest.raises(ArtifactError, match=r"cycle\.urdf: links \['a', 'b'\] are not below the root link 'root'"):
+        solids_from_urdf(cycle)
 
 
 @pytest.mark.parametrize("value, shown", [(0.123456, "0.1235"), (12345.678, "1.235e+04"), (3, "3"), (True, "yes"),
