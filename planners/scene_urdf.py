@@ -183,6 +183,8 @@ def _geometry(col, link: str, index: int, base_dir: Path, where: str) -> Geometr
         path = fn[len("file://"):] if fn.startswith("file://") else fn
         if not path.startswith("package://") and not Path(path).is_absolute():
             path = str(base_dir / path)
+        if not path.startswith("package://") and not Path(path).is_file():
+            raise SceneURDFError(f"{where}: link {link!r} mesh {fn!r} not found (looked at {path})")
         return Geometry(name, "mesh", scale, T, index, mesh=path)
     raise SceneURDFError(f"{where}: link {link!r} has an unknown geometry <{shape.tag}>")
 

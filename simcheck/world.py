@@ -26,6 +26,7 @@ import contextlib
 import dataclasses
 import logging
 import os
+import re
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -37,20 +38,47 @@ from simcheck.errors import RobotBindingError, SceneLoadError, TaskSpecError
 from simcheck.robot_binding import SimRobot
 
 
-def _import_pybullet_quietly():
-    """Import pybullet with its C-level "pybullet build time" banner (written to fd 1/2) discarded."""
+@contextlib.contextmanager
+def _c_output_logged(what: str):
+    """Send what C code writes to fd 1/2 inside the block (PyBullet's banner, its URDF importer's
+    warnings and parse errors) to this module's logger (debug level) instead of the user's terminal.
+
+    Yields a list that holds that text (one string) once the block has ended, for error messages."""
+    import ctypes
+
+    libc = ctypes.CDLL(None)
     saved = [os.dup(fd) for fd in (1, 2)]
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    try:
-        for fd in (1, 2):
-            os.dup2(devnull, fd)
+    said: list[str] = []
+    with tempfile.TemporaryFile() as sink:
+        try:
+            libc.fflush(None)
+            for fd in (1, 2):
+                os.dup2(sink.fileno(), fd)
+            yield said
+        finally:
+            libc.fflush(None)
+            for fd, keep in zip((1, 2), saved):
+                os.dup2(keep, fd)
+                os.close(keep)
+            sink.seek(0)
+            text = sink.read().decode(errors="replace").strip()
+            said.append(text)
+            if text:
+                logging.getLogger(__name__).debug("%s: pybullet wrote: %s", what, text)
+
+
+def _pybullet_said(said: list[str]) -> str:
+    """The last lines PyBullet wrote while failing (its reason), for an error message."""
+    text = re.sub(r"b*3(Error|Warning|Printf)\[[^\]]*\]:?", "\n", "".join(said))
+    lines = list(dict.fromkeys(ln.strip() for ln in text.splitlines() if ln.strip()))
+    return f" (PyBullet: {'; '.join(lines[-3:])})" if lines else ""
+
+
+def _import_pybullet_quietly():
+    """Import pybullet with its C-level "pybullet build time" banner (written to fd 1/2) logged."""
+    with _c_output_logged("import pybullet"):
         import pybullet
-        return pybullet
-    finally:
-        for fd, keep in zip((1, 2), saved):
-            os.dup2(keep, fd)
-            os.close(keep)
-        os.close(devnull)
+    return pybullet
 
 
 pb = _import_pybullet_quietly()
@@ -291,9 +319,11 @@ class World:
         flags = (pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_USE_SELF_COLLISION
                  | pb.URDF_USE_SELF_COLLISION_EXCLUDE_ALL_PARENTS)
         try:
-            whole = pb.loadURDF(str(self.scene_urdf), useFixedBase=True, flags=flags, physicsClientId=c)
+            with _c_output_logged(f"loading {self.scene_urdf}") as said:
+                whole = pb.loadURDF(str(self.scene_urdf), useFixedBase=True, flags=flags, physicsClientId=c)
         except pb.error as exc:
-            raise SceneLoadError(f"PyBullet cannot load scene URDF {self.scene_urdf}: {exc}") from exc
+            raise SceneLoadError(f"PyBullet cannot load scene URDF {self.scene_urdf}: {exc}"
+                                 f"{_pybullet_said(said)}") from exc
         joints, links = self._index(whole)
         pb.removeBody(whole, physicsClientId=c)
         try:
@@ -309,12 +339,14 @@ class World:
                 f = Path(tmp) / f"body{k}.urdf"
                 f.write_text(part.urdf)
                 try:
-                    body = pb.loadURDF(str(f), part.T_world_root[:3, 3].tolist(),
-                                       _quat_xyzw_from_R(part.T_world_root[:3, :3]), useFixedBase=True,
-                                       flags=flags if part.moving else pb.URDF_USE_INERTIA_FROM_FILE,
-                                       physicsClientId=c)
+                    with _c_output_logged(f"loading part {k} of {self.scene_urdf}") as said:
+                        body = pb.loadURDF(str(f), part.T_world_root[:3, 3].tolist(),
+                                           _quat_xyzw_from_R(part.T_world_root[:3, :3]), useFixedBase=True,
+                                           flags=flags if part.moving else pb.URDF_USE_INERTIA_FROM_FILE,
+                                           physicsClientId=c)
                 except pb.error as exc:
-                    raise SceneLoadError(f"PyBullet cannot load a part of scene URDF {self.scene_urdf}: {exc}") from exc
+                    raise SceneLoadError(f"PyBullet cannot load a part of scene URDF {self.scene_urdf}: {exc}"
+                                         f"{_pybullet_said(said)}") from exc
                 bj, bl = self._index(body)
                 for name, index in bl.items():
                     if name != _ANCHOR:
@@ -359,9 +391,10 @@ class World:
 
     def _load_robot(self, robot: SimRobot) -> int:
         try:
-            body = pb.loadURDF(str(robot.urdf), useFixedBase=True, physicsClientId=self.client)
+            with _c_output_logged(f"loading robot {robot.urdf}") as said:
+                body = pb.loadURDF(str(robot.urdf), useFixedBase=True, physicsClientId=self.client)
         except pb.error as exc:
-            raise RobotBindingError(f"PyBullet cannot load robot URDF {robot.urdf}: {exc}") from exc
+            raise RobotBindingError(f"PyBullet cannot load robot URDF {robot.urdf}: {exc}{_pybullet_said(said)}") from exc
         self._robot_joints, self._robot_links = self._index(body)
         for name in robot.joint_names + robot.finger_joints:
             if name not in self._robot_joints:
