@@ -181,7 +181,8 @@ def _split_scene(path: Path) -> list[_SceneBody]:
     """The scene URDF at ``path`` cut into PyBullet bodies, in the closed state.
 
     Every link that no prismatic/revolute joint moves becomes its own fixed single-link body (static:
-    Bullet never tests two static bodies against each other and never integrates them); every
+    Bullet never tests two static bodies against each other and never integrates them; its meshes are
+    concave triangle meshes, not convex hulls -- a hollow carcass stays hollow); every
     prismatic/revolute joint whose parent never moves becomes a fixed-base body holding that joint and
     the whole subtree below it, rooted at an empty anchor link placed at the parent's world pose. One
     ~45-link multibody would cost a Featherstone pass and a broad-phase update over all its links every
@@ -227,6 +228,9 @@ def _split_scene(path: Path) -> list[_SceneBody]:
     bodies = []
     for name, elem in links.items():
         if not moving(name):
+            for col in elem.findall("collision"):      # a static mesh collides as its triangles (a carcass
+                if col.find("geometry/mesh") is not None:  # is hollow), as coal sees it when planning
+                    col.set("concave", "yes")
             bodies.append(_SceneBody(f"<robot name='{name}'>{materials}{ET.tostring(elem, encoding='unicode')}</robot>",
                                      pose(name), False, ()))
     for j in joints:

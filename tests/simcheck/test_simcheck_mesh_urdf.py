@@ -83,3 +83,18 @@ def test_a_missing_mesh_exits_2_naming_the_link_and_the_file(mesh_cabinet, tmp_p
     assert main(["certify", str(broken), "--task", "open-drawer:Drawer Slide", "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err
     assert "link 'handle' mesh 'meshes/handel.obj' not found" in err and "missing_mesh.urdf" in err
+
+
+def test_a_static_mesh_stays_hollow_in_physics(mesh_cabinet):
+    """The carcass is one concave mesh: a ball inside its cavity must not be inside the carcass (PyBullet
+    would otherwise use the mesh's convex hull, a solid block)."""
+    import pybullet as pb
+
+    from simcheck.world import World
+
+    with World(mesh_cabinet) as world:
+        body, index = world._scene_link_index("carcass")     # white box: the PyBullet body of the link
+        ball = pb.createMultiBody(0.1, pb.createCollisionShape(pb.GEOM_SPHERE, radius=0.03, physicsClientId=world.client),
+                                  basePosition=[0.0, 0.0, 0.2], physicsClientId=world.client)
+        closest = pb.getClosestPoints(body, ball, 0.5, linkIndexA=index, physicsClientId=world.client)
+        assert closest and min(c[8] for c in closest) > 0.1     # ~ the drawer box's free space, not -0.2
