@@ -276,7 +276,8 @@ class World:
             raise SceneLoadError(f"scene URDF {self.scene_urdf} does not exist")
         if gui and not display_available():
             raise SceneLoadError("--gui needs a display (DISPLAY is not set); run headless without --gui")
-        self.client = pb.connect(pb.GUI if gui else pb.DIRECT)
+        with _c_output_logged("connecting to PyBullet"):
+            self.client = pb.connect(pb.GUI if gui else pb.DIRECT)
         self._grasp: int | None = None
         self._grasped: tuple[int, int] = (-1, -1)    # (body, link index) held by the attachment
         try:
@@ -293,7 +294,7 @@ class World:
     def close(self) -> None:
         """Disconnect the client (idempotent)."""
         if self.client is not None and self.client >= 0:
-            with contextlib.suppress(Exception):
+            with contextlib.suppress(Exception), _c_output_logged("disconnecting from PyBullet"):
                 pb.disconnect(physicsClientId=self.client)
         self.client = None
 
