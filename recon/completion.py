@@ -26,10 +26,10 @@ import numpy as np
 import shapely
 
 from recon.config import ReconConfig
-from recon.primitive import Primitive, PrimitiveKind
+from recon.primitive import Primitive, PrimitiveKind, SurfacePlane
 
 __all__ = ["VERTICAL_SPAN_LABELS", "MOUNTED_LABELS", "LEGGED_CATEGORIES", "complete_vertical_parts",
-           "complete_mounted_parts", "complete_missing_legs", "complete_reaching_parts"]
+           "complete_mounted_parts", "mount_face", "complete_missing_legs", "complete_reaching_parts"]
 
 VERTICAL_SPAN_LABELS = frozenset({"leg"})
 MOUNTED_LABELS = frozenset({"handle", "knob"})
@@ -52,6 +52,33 @@ def _extended(prim: Primitive, k: int, direction: np.ndarray, amount: float) -> 
     return Primitive(prim.kind, size, T)
 
 
+def mount_face(i: int, prims: dict[int, Primitive], labels: dict[int, str],
+               config: ReconConfig) -> tuple[int, SurfacePlane, float] | None:
+    """The face that mounted part ``i`` (a handle/knob) stands in front of: (part id of its mount, the
+    mount's surface plane (normal out of the mount, world), gap (m) from part ``i``'s nearest corner to
+    that plane). A drawer/door face is preferred to any other part's, then the smallest gap; only faces
+    within ``[-theta_d, completion_reach]`` of the part whose outline holds the part's centre count.
+    None when no face qualifies."""
+    prim = prims[i]
+    c = prim.corners()
+    best = None
+    for j, other in prims.items():
+        if j == i or labels[j] in MOUNTED_LABELS:
+            continue
+        for pl in other.planes(config.cylinder_side_faces):
+            gap = float(np.min(c @ pl.normal + pl.d))          # handle's nearest point above the face
+            if not (-config.theta_d <= gap <= config.completion_reach):
+                continue
+            B = np.linalg.svd(np.eye(3) - np.outer(pl.normal, pl.normal))[0][:, :2]
+            poly = shapely.Polygon(pl.polygon @ B)
+            if not poly.contains(shapely.Point(*(prim.center @ B))):
+                continue
+            key = (labels[j] not in _MOUNTS, gap)
+            if best is None or key < best[0]:
+                best = (key, j, pl, gap)
+    return None if best is None else best[1:]
+
+
 def complete_mounted_parts(prims: dict[int, Primitive], labels: dict[int, str],
                            config: ReconConfig) -> tuple[dict[int, Primitive], dict[int, float]]:
     """Extend handles/knobs back onto the face they are mounted on: (new prims, {part_id: metres})."""
@@ -59,25 +86,10 @@ def complete_mounted_parts(prims: dict[int, Primitive], labels: dict[int, str],
     for i, prim in prims.items():
         if labels[i] not in MOUNTED_LABELS or prim.kind is PrimitiveKind.SPHERE:
             continue
-        c = prim.corners()
-        best = None
-        for j, other in prims.items():
-            if j == i or labels[j] in MOUNTED_LABELS:
-                continue
-            for pl in other.planes(config.cylinder_side_faces):
-                gap = float(np.min(c @ pl.normal + pl.d))          # handle's nearest point above the face
-                if not (-config.theta_d <= gap <= config.completion_reach):
-                    continue
-                B = np.linalg.svd(np.eye(3) - np.outer(pl.normal, pl.normal))[0][:, :2]
-                poly = shapely.Polygon(pl.polygon @ B)
-                if not poly.contains(shapely.Point(*(prim.center @ B))):
-                    continue
-                key = (labels[j] not in _MOUNTS, gap)
-                if best is None or key < best[0]:
-                    best = (key, pl.normal, gap)
-        if best is None or best[2] <= config.theta_d / 2:
+        found = mount_face(i, prims, labels, config)
+        if found is None or found[2] <= config.theta_d / 2:
             continue
-        n, gap = best[1], best[2]
+        n, gap = found[1].normal, found[2]
         k = int(np.argmax(np.abs(prim.T_world_part[:3, :3].T @ n)))
         if prim.kind is PrimitiveKind.CYLINDER and k != 2:
             # a bar lying along the face on hidden posts: its envelope down to the face is a box

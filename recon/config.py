@@ -74,6 +74,51 @@ class ReconConfig:
     completion_reach: float = 0.3
     """Legs are extended (completion.py) to a surface above / below them at most this far (m)."""
 
+    # --- handle shapes (handle_shapes.py) ---
+    handle_shapes: bool = True
+    """Write a handle as the shapes a gripper meets (a bar on two posts, a knob's cap on its stem)
+    instead of the one box enveloping it down to its mount."""
+    handle_bleed_margin: float = 0.008
+    """Handle points within this (m) of their mount's face are the front's own surface (label bleed)
+    or its depth noise; they do not measure the bar."""
+    handle_face_window: float = 0.04
+    """The mount's points within this (m) of its fitted face, and within the handle's reach plus this
+    along it, show where the face behind the handle was seen (their median height)."""
+    handle_min_points: int = 15
+    """A handle needs this many points clear of the face for a bar/knob; else it keeps its envelope."""
+    handle_extent_percentile: float = 2.0
+    """A handle's extents along the face come from the [p, 100 - p] percentiles of its points clear of
+    the face (widened by 1 / (1 - 2p/100))."""
+    handle_middle_percentile: float = 10.0
+    """A bar's middle across it is the mean of this and the opposite percentile of its points (bleed and
+    lateral noise spread its edges unevenly; measured on kitchen scans 0-3: mean error 2.7 mm realistic
+    vs 4.0 mm from the extent's percentiles)."""
+    handle_outer_percentile: float = 90.0
+    """A bar's outer face lies at most at this percentile of its points' heights off the face: a bar
+    seen mostly from the front has its median point on its outer face, not at its centre. (Less a noise
+    share of 1.28 σ it put realistic bars up to 9 mm too deep; without it they are at most 1.2 mm too deep
+    and 8 mm too far out on kitchen scans 0-3.)"""
+    handle_outer_noise: float = 1.28
+    """... less this many σ of depth noise (σ: spread of the mount's points about the face seen)."""
+    handle_max_thickness: float = 0.018
+    """A bar's thickness (m, across it and out from the face) and a knob cap's depth, at most this:
+    bars are 10-16 mm; a wider measure is lateral noise and label bleed."""
+    handle_knob_max_length: float = 0.08
+    """A handle shorter than this (m) along the face in every direction is a knob (cap on a stem), else
+    a bar on two posts (bars are 10-35 cm long, knobs 3-5 cm across)."""
+    handle_knob_max_diameter: float = 0.05
+    """A knob cap's diameter (m) at most this."""
+    handle_post_width: float = 0.012
+    """Diameter (m) of a bar's standoff posts and a knob's stem (hidden behind the bar: a typical value)."""
+    handle_post_inset: float = 0.015
+    """A bar's posts stand this far (m) in from its ends."""
+    handle_min_standoff: float = 0.008
+    """The bar's (cap's) inner face must stand at least this far (m) off the face, room for posts (a
+    stem); else the handle keeps its envelope."""
+    handle_min_post: float = 0.002
+    """... and the posts (stem) down to the mount's fitted face at least this long (m): a mount fitted in
+    front of the bar (a noise-thickened front) leaves the handle its envelope."""
+
     # --- surface planes and contacts, Eq. 1 (planes.py, contacts.py) ---
     planes: str = "exact"
     """Where the planes Π of the contact test come from: "exact" primitive faces or "ransac" planes

@@ -18,6 +18,7 @@ from recon.completion import (complete_missing_legs, complete_mounted_parts, com
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.fitting import FitScore, fit_part
+from recon.handle_shapes import mounted_handle_shapes, posed_handle_shapes
 from recon.joints import estimate_joints
 from recon.model import JointType, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
 from recon.part_shapes import carcass_shapes, drawer_shapes
@@ -84,6 +85,7 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
         log.info("removed %d outlier points (flying pixels)", removed)
     n_obj = len(scan.objects)
     staged = []   # (obj, labels, fits, contacts, tree, prims)
+    handle_shapes = {}   # {part_id: HandleShapes}: a handle's bar and posts, posed with its primitive at the end
     t0 = time.perf_counter()
     for k, obj in enumerate(scan.objects):
         if progress:
@@ -138,6 +140,10 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
                  f"({labels[tree.parent[i]]})")
         if config.refine:
             prims = refine_parts(prims, tree, config)
+        # the bar where its points are, its posts reaching back to the (refined) mount face
+        prims, handles = mounted_handle_shapes(prims, labels, pts_by_part, config, object_name(obj.category, obj.id),
+                                               tree.parent)
+        handle_shapes.update(handles)
         staged.append((obj, labels, fits, contacts, tree, prims))
     timings["parts"] = time.perf_counter() - t0
 
@@ -204,6 +210,7 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
         joints = estimate_joints(obj.category, names, labels, prims, tree, obstacles_for_object(obj.id),
                                  config, warn)
         shapes = template_shapes(joints, prims, labels, config) if config.template_shapes else {}
+        shapes.update(posed_handle_shapes(handle_shapes, prims))
         parts = tuple(
             PartFit(i, labels[i], link_name(obj.category, obj.id, labels[i], i), prims[i],
                     float(fits[i][1].total), dict(fits[i][2]), int(fits[i][3]),
