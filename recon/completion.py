@@ -10,7 +10,8 @@ are within ``completion_reach``.
 Handles and knobs lose their thin stems the same way (a knob's stem is a few points at most), so a
 mounted part is extended backwards, along its axis nearest the plane's normal, onto the face of a
 drawer/door (else any part) that it stands in front of, when that face is within ``completion_reach``
-(a bar handle lying along the face becomes the box enveloping it and its hidden posts).
+(a bar handle lying along the face becomes the box enveloping it and its hidden posts; handle_shapes.py
+then writes it as the bar and posts a gripper meets).
 A leg the camera hardly saw at all (under a bed frame: fewer than ``min_part_points`` points, maybe
 none) is still declared in labels.json; a bed, table or chair stands on four legs at the corners of a
 rectangle, so missing legs are placed at the corners the fitted ones leave free, as copies of the

@@ -5,25 +5,31 @@ one solid box from the drawer/door face out to the bar. A gripper aimed at that 
 half a standoff too deep and its fingertips hit the front. The articulated template of a handle says
 more: a bar (or a knob's cap) at the handle's outer extent, held off the face by thin posts (a stem).
 
-Measured in the mount face's frame, ``x`` = height of a point above the face (m, along the face's
-outward normal ``n``), ``u``/``v`` = in-face coordinates along the envelope's axes:
+The handle hangs from its part-tree parent (its drawer/door), on the parent's face it stands in front
+of (:func:`facing_plane`), after refinement. Measured along that face's outward normal ``n``:
 
-- points within ``handle_bleed_margin`` of the face are dropped: they are the front's own surface
-  labelled handle (label bleed) or its depth noise;
-- the bar's centre height is the **median** ``x`` of the points left: the bar's outer face is the
-  largest surface of a handle the camera sees, depth noise is symmetric about it, and posts/bleed pull
-  the median in by about as much as the bar's half thickness (measured on 33 clean and 41 realistic
-  handles of kitchen scans 0-3: centre within -4.5 .. +5.3 mm clean, +0.4 .. +8.1 mm realistic);
+- the face the camera saw: the median height of the mount's own points around the handle (a refined or
+  noise-thickened front may sit a centimetre or two off its points; the bar belongs where its points
+  are, and its posts reach back to the fitted face); their robust spread is the depth noise σ there;
+- ``x`` = height of a handle point above that seen face; points within ``handle_bleed_margin`` of it
+  are dropped: the front's own surface labelled handle (label bleed) or its depth noise;
+- the bar's centre height is the **median** ``x`` of the points left, but at most half a bar below the
+  outer face, the ``handle_outer_percentile`` height less ``handle_outer_noise`` σ: posts and bleed
+  pull the median in, a bar seen mostly from the front has its median on its outer face. Measured on
+  the 33 clean / 41 realistic handles of kitchen scans 0-3 against the truth: the median alone
+  -4.5 .. +5.3 mm clean, +0.4 .. +8.1 mm realistic; capped, clean bars within 1.5 mm;
 - extents along the face from the ``[p, 100 - p]`` percentiles (``handle_extent_percentile``), widened
-  by ``1 / (1 - 2p/100)`` (exact for points spread evenly over the extent);
+  by ``1 / (1 - 2p/100)`` (exact for points spread evenly); the middle across the bar from the
+  ``handle_middle_percentile`` pair (bleed spreads its edges unevenly);
 - the longer in-face extent is the bar's length; shorter than ``handle_knob_max_length`` -> a knob;
 - the bar's thickness (across it and out from the face) is its measured width, at most
   ``handle_max_thickness`` (a wider measure is lateral noise and bleed, not a thicker bar);
 - the posts (``handle_post_width`` thick, ``handle_post_inset`` in from the bar's ends; unseen, so a
-  typical value) or the knob's stem run from the face to the bar's inner face.
+  typical value) or the knob's stem run from the mount's fitted face to the bar's inner face.
 
-A handle with fewer than ``handle_min_points`` points clear of the face, or whose bar would leave less
-than ``handle_min_standoff`` between itself and the face, keeps its envelope (status ``ENVELOPE``,
+A handle with fewer than ``handle_min_points`` points clear of the face, whose bar would stand less
+than ``handle_min_standoff`` off the seen face, or whose posts would be shorter than
+``handle_min_post`` (a mount fitted in front of its points), keeps its envelope (status ``ENVELOPE``,
 logged with the reason). Frames: every primitive is in the world frame (z up, metres).
 """
 

@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 from recon.config import ReconConfig
-from recon.handle_shapes import HandleStyle, handle_shapes, mounted_handle_shapes, posed_handle_shapes
+from recon.handle_shapes import (HandleStyle, facing_plane, handle_shapes, mounted_handle_shapes,
+                                 posed_handle_shapes)
 from recon.primitive import Primitive, PrimitiveKind, SurfacePlane
 
 CFG = ReconConfig()
@@ -168,3 +169,43 @@ def _shift(t) -> np.ndarray:
     T = np.eye(4)
     T[:3, 3] = t
     return T
+
+
+def test_a_mount_fitted_in_front_of_its_bar_leaves_the_envelope():
+    """A noise-thickened front fitted 4 cm proud of its points would bury the bar's posts."""
+    rng = np.random.default_rng(7)
+    face = SurfacePlane(np.array([1.0, 0.0, 0.0]), -0.04, FACE.polygon + [0.04, 0, 0])   # plane x = +0.04
+    mount = np.c_[rng.normal(0.0, 0.002, 800), rng.uniform(-0.3, 0.3, 800), rng.uniform(-0.2, 0.2, 800)]
+    env = _box_envelope(0.04, 0.06, 0.11, 0.01)
+    hs = handle_shapes(_bar_cloud(rng, noise=0.002), env, face, CFG, mount)
+    assert hs.style is HandleStyle.ENVELOPE and hs.envelope is env and "room for its posts" in hs.reason
+
+
+def test_the_mount_face_is_the_one_the_handle_stands_in_front_of():
+    """A door 2 cm thick with a bar near its edge: the front face, not the side face next to the bar."""
+    door = Primitive(PrimitiveKind.BOX, [0.02, 0.6, 0.8], _shift([-0.01, 0.0, 0.0]))
+    pts = _bar_cloud(np.random.default_rng(8)) + [0.0, 0.27, 0.0]       # bar 3 cm in from the door's edge
+    face = facing_plane(door, pts, CFG)
+    assert face is not None and np.allclose(face.normal, [1, 0, 0]) and abs(face.d) < 1e-12
+    back = facing_plane(door, pts * [-1, 1, 1] - [0.02, 0, 0], CFG)      # the same bar behind the door
+    assert back is not None and np.allclose(back.normal, [-1, 0, 0])
+    assert facing_plane(door, pts * [0, 1, 1] - [0.01, 0, 0], CFG) is None   # points inside the door: no face
+
+
+def test_reconstructed_cabinet_handles_are_bars_on_posts_in_scene_urdf(kitchen_rec, kitchen_scan):
+    """The synthetic cabinet's handles (solid 30 mm boxes in front of the fronts at x = 0.5 m): each is
+    written as a bar whose outer face is where the handle's front is, on two posts standing on the
+    front, and scene.urdf gives the handle link one collision per shape."""
+    from recon.scene_urdf import urdf_string
+
+    cab = next(o for o in kitchen_rec.objects if o.category == "cabinet")
+    text = urdf_string(kitchen_rec)
+    for pid in (103, 105):
+        part = cab.part(pid)
+        bar, *posts = part.solids
+        assert len(posts) == 2 and bar.kind is PrimitiveKind.BOX
+        assert abs(float(np.max(bar.corners()[:, 0])) - 0.53) < 0.005
+        assert max(np.sort(np.ptp(bar.corners(), axis=0))[:2]) <= CFG.handle_max_thickness + 1e-9
+        for p in posts:
+            assert abs(float(np.min(p.corners()[:, 0])) - 0.5) < 0.006
+        assert text.count(f'<collision name="{part.link}_collision') == 3
