@@ -171,8 +171,9 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
     if inner < config.handle_min_standoff or inner - base < config.handle_min_post:
         return HandleShapes(HandleStyle.ENVELOPE, f"its {'cap' if knob else 'bar'} ({depth * 1000:.0f} mm thick, "
                             f"centre {xc * 1000:.1f} mm off the seen face, {(xc - base) * 1000:.1f} mm off the "
-                            f"mount) leaves too little room for its {'stem' if knob else 'posts'} (needs "
-                            f"{config.handle_min_standoff * 1000:.0f} mm)", envelope)
+                            f"mount's fitted face) leaves too little room for its {'stem' if knob else 'posts'} "
+                            f"({inner * 1000:.1f} mm off the seen face, needs {config.handle_min_standoff * 1000:.0f}; "
+                            f"{(inner - base) * 1000:.1f} mm long, needs {config.handle_min_post * 1000:.0f})", envelope)
     R = np.column_stack([u, v, n])
 
     def at(su: float, sx: float) -> np.ndarray:   # world point at in-face (mu + su, mv), height sx above the seen face
@@ -197,8 +198,9 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
 
 def facing_plane(mount: Primitive, points: np.ndarray, config: ReconConfig) -> SurfacePlane | None:
     """The face of ``mount`` a handle's ``points`` (k, 3) world stand in front of: of the faces whose
-    outline holds the points' median (projected onto the face), the one it stands highest above;
-    None when it stands above none of them."""
+    outline, grown by ``handle_face_window`` (a fitted door may come out a little narrower than the
+    handle near its edge), holds the points' median (projected onto the face), the one it stands highest
+    above; None when it stands above none of them."""
     centre = np.median(np.asarray(points, float).reshape(-1, 3), axis=0)
     best = None
     for pl in mount.planes(config.cylinder_side_faces):
@@ -206,7 +208,7 @@ def facing_plane(mount: Primitive, points: np.ndarray, config: ReconConfig) -> S
         if h <= 0 or (best is not None and h <= best[0]):
             continue
         B = np.linalg.svd(np.eye(3) - np.outer(pl.normal, pl.normal))[0][:, :2]
-        if shapely.Polygon(pl.polygon @ B).contains(shapely.Point(*(centre @ B))):
+        if shapely.Polygon(pl.polygon @ B).buffer(config.handle_face_window).contains(shapely.Point(*(centre @ B))):
             best = (h, pl)
     return None if best is None else best[1]
 
