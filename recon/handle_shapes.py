@@ -46,7 +46,8 @@ from recon.completion import MOUNTED_LABELS, mount_face
 from recon.config import ReconConfig
 from recon.primitive import Primitive, PrimitiveKind, SurfacePlane
 
-__all__ = ["HandleStyle", "HandleShapes", "handle_shapes", "facing_plane", "mounted_handle_shapes", "posed_handle_shapes"]
+__all__ = ["HandleStyle", "HandleShapes", "handle_shapes", "facing_plane", "mounted_handle_shapes",
+           "posed_handle_shapes"]
 
 log = logging.getLogger(__name__)
 
@@ -144,7 +145,8 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
     n = np.asarray(face.normal, float) / np.linalg.norm(face.normal)
     u, v = _face_axes(envelope, n)                     # (u, v, n) right-handed
     reach = 0.5 * float(np.max(np.abs(envelope.T_world_part[:3, :3].T @ np.column_stack([u, v])).T @ envelope.size))
-    seen, sigma, n_seen = _seen_face(mount_points, n, face.d, envelope.center, reach + config.handle_face_window, config)
+    seen, sigma, n_seen = _seen_face(mount_points, n, face.d, envelope.center, reach + config.handle_face_window,
+                                     config)
     x = points @ n + face.d - seen                     # height above the face the camera saw
     clear = x > config.handle_bleed_margin
     if clear.sum() < config.handle_min_points:
@@ -158,7 +160,8 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
     if width > length:                                 # u along the bar
         u, v = v, -u
         (mu, length), (mv, width) = _extent(q @ u, pct), _extent(q @ v, pct)
-    mv = float(np.mean(np.percentile(q @ v, [config.handle_middle_percentile, 100.0 - config.handle_middle_percentile])))
+    mid_pct = config.handle_middle_percentile
+    mv = float(np.mean(np.percentile(q @ v, [mid_pct, 100.0 - mid_pct])))
     knob = length < config.handle_knob_max_length
     if knob:
         across = float(np.clip((length + width) / 2.0, config.min_thickness, config.handle_knob_max_diameter))
@@ -173,7 +176,8 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
                             f"centre {xc * 1000:.1f} mm off the seen face, {(xc - base) * 1000:.1f} mm off the "
                             f"mount's fitted face) leaves too little room for its {'stem' if knob else 'posts'} "
                             f"({inner * 1000:.1f} mm off the seen face, needs {config.handle_min_standoff * 1000:.0f}; "
-                            f"{(inner - base) * 1000:.1f} mm long, needs {config.handle_min_post * 1000:.0f})", envelope)
+                            f"{(inner - base) * 1000:.1f} mm long, needs {config.handle_min_post * 1000:.0f})",
+                            envelope)
     R = np.column_stack([u, v, n])
 
     def at(su: float, sx: float) -> np.ndarray:   # world point at in-face (mu + su, mv), height sx above the seen face
@@ -251,6 +255,7 @@ def mounted_handle_shapes(prims: dict[int, Primitive], labels: dict[int, str], p
     return out, shapes
 
 
-def posed_handle_shapes(shapes: dict[int, HandleShapes], prims: dict[int, Primitive]) -> dict[int, tuple[Primitive, ...]]:
+def posed_handle_shapes(shapes: dict[int, HandleShapes],
+                        prims: dict[int, Primitive]) -> dict[int, tuple[Primitive, ...]]:
     """{part_id: the handle's shapes at its final primitive's pose} for the parts of ``prims`` in ``shapes``."""
     return {i: hs.posed(prims[i]) for i, hs in shapes.items() if i in prims}

@@ -34,7 +34,8 @@ def _bar_cloud(rng: np.random.Generator, noise: float = 0.0, bleed: int = 0) -> 
     """Points a camera in front of (+x) and above the handle sees: the bar's front, top and bottom,
     the posts' visible sides; plus ``bleed`` front-face points around the bar labelled handle."""
     x_in = BAR_OUT - BAR_T
-    front = np.c_[np.full(150, BAR_OUT), rng.uniform(-BAR_L / 2, BAR_L / 2, 150), rng.uniform(-BAR_T / 2, BAR_T / 2, 150)]
+    front = np.c_[np.full(150, BAR_OUT), rng.uniform(-BAR_L / 2, BAR_L / 2, 150),
+                  rng.uniform(-BAR_T / 2, BAR_T / 2, 150)]
     tb = np.c_[rng.uniform(x_in, BAR_OUT, 60), rng.uniform(-BAR_L / 2, BAR_L / 2, 60),
                rng.choice([-BAR_T / 2, BAR_T / 2], 60)]
     posts = []
