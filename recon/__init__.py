@@ -15,6 +15,8 @@ Pipeline (one module per product)::
     refinement.py  Alg. 1: Kabsch rotation of each child onto its parent's planes, top down
     joints.py      articulated templates (templates.py): joint type, axis, origin, limits (sweeps)
     part_shapes.py template shapes: a drawer's box behind its front, a hollow carcass open at its fronts
+    handle_shapes.py a handle as a gripper meets it: a bar at its outer extent on two posts (a knob:
+                   cap on stem), measured off the mount face; the envelope box when unclear
     walls.py       walls of the room: vertical RANSAC planes of the background -> wall0, wall1, ... boxes
     scene_graph.py objects: support (floor / another object), proximity, upright pose
     scene_urdf.py  scene.urdf (yourdfpy);  graph_json.py  graph.json;  preview.py  preview.png
