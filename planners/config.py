@@ -15,7 +15,10 @@ class PlannerConfig:
     Grasp
         grasp_tilt: downward tilt of the approach for horizontal handle bars (STACK: ~20 deg helps); a level
             grasp is the fallback candidate.
-        grasp_backoff: fallback grasp held this much further out than the bar centre (short knobs).
+        grasp_backoff: fallback grasp held this much further out than the bar centre (short knobs) ...
+        grasp_backoff_share: ... but at most this share of the grasped shape's depth along the approach
+            (0.5: the tool frame stays within the bar's outer face; the fingertips reach past it). A 12 mm
+            bar is then backed off 6 mm, not 15 mm (which closed the fingers on air, planners.handle).
         pregrasp_distance: tool stand-off before the straight grasp motion, along the approach axis.
         retreat_distance: straight retreat along the approach axis after releasing; when blocked, half
             of it, down to min_retreat_distance, is tried.
@@ -53,6 +56,7 @@ class PlannerConfig:
 
     grasp_tilt: float = math.radians(20.0)
     grasp_backoff: float = 0.015
+    grasp_backoff_share: float = 0.5
     pregrasp_distance: float = 0.10
     retreat_distance: float = 0.12
     min_retreat_distance: float = 0.04

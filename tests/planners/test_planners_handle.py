@@ -37,7 +37,8 @@ def test_drawer_handle_link_found_and_grasp_frame_faces_the_front(fixture_urdf):
     assert h.bar_width == pytest.approx(0.02)
     level, backed = frames[2], frames[4]
     assert np.allclose(level[:3, 2], [1, 0, 0], atol=1e-6)   # the fixture yaw is written to 1e-6
-    assert np.allclose(backed[:3, 3], frames[0][:3, 3] - 0.015 * frames[0][:3, 2], atol=1e-12)
+    # Backed off by half the 20 mm bar's depth (grasp_backoff_share), not the full 15 mm grasp_backoff.
+    assert np.allclose(backed[:3, 3], frames[0][:3, 3] - 0.010 * frames[0][:3, 2], atol=1e-12)
 
 
 def test_door_handle_is_vertical_and_approached_against_the_swing(fixture_urdf):
