@@ -45,6 +45,16 @@ def refine_rotation(parent: Primitive, child: Primitive, config: ReconConfig) ->
     return rot.as_matrix()
 
 
+def _front_panel(child: Primitive, normal: np.ndarray, config: ReconConfig) -> bool:
+    """Is ``child`` a panel (thinnest extent below ``panel_ratio`` × the next) whose thin axis is along
+    the contact plane's unit ``normal`` (3,) (|cos| >= ``theta_a``)?"""
+    order = np.argsort(child.size)
+    if child.size[order[0]] >= config.panel_ratio * child.size[order[1]]:
+        return False
+    thin = child.T_world_part[:3, int(order[0])]
+    return bool(abs(float(thin @ normal)) >= config.theta_a)
+
+
 def _rotate_about(T: np.ndarray, R: np.ndarray, centre: np.ndarray) -> np.ndarray:
     M = np.eye(4)
     M[:3, :3] = R
@@ -85,6 +95,9 @@ def refine_parts(prims: dict[int, Primitive], tree: PartTree,
             continue
         pp = out[p].planes(config.cylinder_side_faces)[best[0]]
         cp = out[c].planes(config.cylinder_side_faces)[best[1]]
+        if not config.snap_front_panels and _front_panel(out[c], pp.normal, config):
+            log.debug("part %d: a front panel keeps its measured face (no snap)", c)
+            continue
         signed = float(np.mean(cp.polygon @ pp.normal + pp.d))
         if abs(signed) <= config.theta_d:
             M = np.eye(4)
