@@ -7,6 +7,10 @@ at ``cfg.stand_path_samples`` points spread along the whole opening path (for a 
 Ranking: complete poses first, then the share of the path reached, then the reach margin (the smallest
 normalised distance of an arm joint to its limit along the path) plus the clearance between the arm/base
 and the scene at the grasp (metres, capped at 0.1).
+
+When no pose reaches the grasp, the summary names what the grasp configurations collide with (e.g. on
+realistic reconstructions: the fingers inside a noise-inflated front or body box in front of the handle,
+``panda_leftfinger_0 / scene::microwave2_body8_0``), from a few seeds re-solved without collision checks.
 """
 
 from __future__ import annotations
@@ -94,6 +98,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
     idx = np.unique(np.linspace(0, m - 1, max(2, cfg.stand_path_samples)).round().astype(int))
     kept: list[StandPose] = []
     n_ik = n_complete = 0
+    missed: list[np.ndarray] = []   # base-feasible seeds from which no grasp was reached (for the reason)
     for trial in range(cfg.stand_candidates):
         d = rng.uniform(*cfg.stand_distance)
         lat = rng.uniform(*lat_range)
@@ -130,6 +135,8 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
                 best = cand
             if cand.path_share == 1.0 or successes == 2:   # candidates are in order of preference
                 break
+        if best is None and len(missed) < _DIAGNOSED_SEEDS:
+            missed.append(q_seed)
         if best is not None:
             best = replace(best, clearance=world.clearance(best.q_grasp, s_samples[0]))
             kept.append(best)
@@ -142,5 +149,37 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
     kept.sort(key=StandPose.rank_key)
     summary = (f"{trial + 1} stand poses sampled, IK reached the grasp from {n_ik}, the whole opening path "
                f"(base fixed) from {n_complete}")
+    if not kept and missed:
+        summary += _grasp_blockers(kin, world, T_paths, s_samples[0], missed, cfg)
     return kept, summary
+
+
+_DIAGNOSED_SEEDS = 3
+"""When no stand pose reaches the grasp, this many of the sampled seeds are re-solved without collision
+checks to name what the grasp configurations collide with (only then: successful searches pay nothing)."""
+
+
+def _grasp_blockers(kin, world, T_paths: list, s0: float, seeds: list, cfg: PlannerConfig) -> str:
+    """``"; the grasp collides with: A / B (k of n), ..."``: the scene geometries that the collision-free
+    IK rejected, from grasp IK solved without collision checks (its own seeded generator, so the stand
+    search's random stream is untouched); ``""`` when IK misses the grasp even without them."""
+    spec = kin.spec
+    arm = np.zeros(spec.dof, bool)
+    arm[3:] = True
+    rng = np.random.default_rng(0)
+    counts: dict[tuple[str, str], int] = {}
+    n = 0
+    for q_seed in seeds:
+        for T_path in T_paths[:2]:   # the preferred candidates
+            r = solve_ik(kin.tool_pose_jacobian, T_path[0], q_seed, world.robot.lower, world.robot.upper, arm,
+                         None, pos_tol=cfg.ik_pos_tol, rot_tol=cfg.ik_rot_tol, restarts=1, rng=rng)
+            if not r.success:
+                continue
+            n += 1
+            for pair in dict.fromkeys(world.colliding_pairs(r.q, s0, True)):
+                counts[pair] = counts.get(pair, 0) + 1
+    if not counts:
+        return ""
+    top = sorted(counts.items(), key=lambda kv: -kv[1])[:3]
+    return "; the grasp collides with: " + ", ".join(f"{a} / {b} ({k} of {n})" for (a, b), k in top)
 

@@ -93,3 +93,20 @@ def test_knob_lying_along_the_face_is_backed_off_up_to_half_its_diameter(variant
     assert np.allclose(_backoffs(scene), 0.008, atol=1e-6)
     # A share of the whole depth (16 mm) is capped by grasp_backoff (15 mm).
     assert np.allclose(_backoffs(scene, PlannerConfig(grasp_backoff_share=1.0)), CFG.grasp_backoff, atol=1e-9)
+
+
+def test_no_stand_pose_reason_names_what_the_grasp_collides_with(variants, robot):
+    """A noise-inflated box in front of the drawer front engulfing the handle (as realistic kitchen seed 4's
+    microwave body swallowed its door handle): no stand pose, and the reason names that box."""
+    from planners import plan_open_task
+    from planners.task import PlanStatus
+    blocker = ('  <link name="cabinet1_panel99"><collision><origin xyz="1.225 0 0.615"/><geometry>'
+               '<box size="0.07 0.4 0.2"/></geometry></collision></link>\n'
+               '  <joint name="cabinet1_panel99_joint" type="fixed"><parent link="world"/>'
+               '<child link="cabinet1_panel99"/></joint>\n</robot>')
+    path = variants.write("engulfed.urdf", variants.text.replace("</robot>", blocker))
+    plan = plan_open_task(robot, path, OpenTask("drawer", DRAWER), seed=0,
+                          config=PlannerConfig(stand_candidates=12))
+    assert plan.status is PlanStatus.NO_STAND_POSE
+    assert "IK reached the grasp from 0" in plan.reason
+    assert re.search(r"the grasp collides with: panda_\w+ / scene::cabinet1_panel99_0 \(\d+ of \d+\)", plan.reason)
