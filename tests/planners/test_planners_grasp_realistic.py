@@ -110,3 +110,18 @@ def test_no_stand_pose_reason_names_what_the_grasp_collides_with(variants, robot
     assert plan.status is PlanStatus.NO_STAND_POSE
     assert "IK reached the grasp from 0" in plan.reason
     assert re.search(r"the grasp collides with: panda_\w+ / scene::cabinet1_panel99_0 \(\d+ of \d+\)", plan.reason)
+
+
+@pytest.mark.xfail(strict=True, reason="planners.pin_world (not this file's owner) exempts gripper-handle pairs by "
+                   "the geometry's index in the scene URDF, but pinocchio.appendModel puts the geometries fixed to "
+                   "the world first: with a wall after the cabinet the exempted geometry is another link's (kitchen "
+                   "seed 9 realistic: a drawer panel instead of refrigerator3_handle13_0). Match them by name; then "
+                   "drop this marker.")
+def test_planning_world_exempts_the_real_handle_geometries(robot, variants):
+    from planners.pin_world import PlanningWorld
+    from planners.plan import robot_kinematics
+    scene = read_scene_urdf(variants.walled(0.3))   # a wall link fixed to the world, after the cabinet
+    h = find_handle(scene, OpenTask("drawer", DRAWER), {}, CFG)
+    world = PlanningWorld(robot_kinematics(robot), scene, DRAWER, set(h.handle_geoms), {}, CFG.clearance)
+    names = sorted(world.geom.geometryObjects[i].name for i in world.handle_geom_ids)
+    assert names and all(n.startswith("scene::cabinet1_handle13") for n in names), names
