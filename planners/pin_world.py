@@ -173,14 +173,15 @@ class PlanningWorld:
         except Exception as e:
             raise SceneURDFError(f"{path}: pinocchio cannot load the scene URDF ({e})") from e
         self.smodel, self.sdata = smodel, smodel.createData()
-        # (link, index) of every scene geometry, in URDF order per link (matches the pure reading).
+        # (link, index) of every scene geometry, in URDF order per link (matches the pure reading), by the
+        # geometry's name: pinocchio.appendModel reorders geometries (those fixed to the world first).
+        pre = self.PREFIX
         counter = defaultdict(int)
-        keys = []
+        key_of = {}
         for go in sgeom.geometryObjects:
             link = smodel.frames[go.parentFrame].name
-            keys.append((link, counter[link]))
+            key_of[pre + go.name] = (link, counter[link])
             counter[link] += 1
-        pre = self.PREFIX
         for i in range(1, len(smodel.frames)):
             f = smodel.frames[i]
             f.name = pre + f.name
@@ -209,7 +210,7 @@ class PlanningWorld:
         self.s0 = float(self.q[self.task_idx])
         # Gripper-handle pairs, switched off while grasp contact is allowed.
         grip = {i for i, ln in enumerate(robot.geom_links) if ln in set(robot.spec.gripper_links)}
-        handle = {nr + i for i, k in enumerate(keys) if k in handle_geoms}
+        handle = {i for i, go in enumerate(self.geom.geometryObjects) if key_of.get(go.name) in handle_geoms}
         self.grasp_pairs = [k for k, cp in enumerate(self.geom.collisionPairs)
                             if (cp.first in grip and cp.second in handle) or (cp.second in grip and cp.first in handle)]
         self.handle_geom_ids = sorted(handle)

@@ -112,11 +112,6 @@ def test_no_stand_pose_reason_names_what_the_grasp_collides_with(variants, robot
     assert re.search(r"the grasp collides with: panda_\w+ / scene::cabinet1_panel99_0 \(\d+ of \d+\)", plan.reason)
 
 
-@pytest.mark.xfail(strict=True, reason="planners.pin_world (not this file's owner) exempts gripper-handle pairs by "
-                   "the geometry's index in the scene URDF, but pinocchio.appendModel puts the geometries fixed to "
-                   "the world first: with a wall after the cabinet the exempted geometry is another link's (kitchen "
-                   "seed 9 realistic: a drawer panel instead of refrigerator3_handle13_0). Match them by name; then "
-                   "drop this marker.")
 def test_planning_world_exempts_the_real_handle_geometries(robot, variants):
     from planners.pin_world import PlanningWorld
     from planners.plan import robot_kinematics
