@@ -65,6 +65,10 @@ class ReconConfig:
     ``front_edge_min_bin`` wide): fewer make the edge noisy, more blur it."""
     front_edge_min_bin: float = 0.006
     """... smallest bin width (m) of that profile."""
+    front_edge_max_trim: float = 0.03
+    """... an edge moves in from the 0.2 / 99.8 percentile extent by at most this (m): bleed and edge
+    noise reach 15-25 mm; a deeper drop in density is occlusion (a mattress in front of a headboard's
+    lower half), not the panel's edge (bench realistic headboards without the cap: centre 26 cm off)."""
     front_edge_min_points: int = 150
     """... a front face with fewer points keeps the percentile extents."""
     front_thickness: float = 0.018

@@ -241,7 +241,8 @@ def _denoised(prim: Primitive, points: np.ndarray, config: ReconConfig,
             if a != k:
                 edges = _half_density_edges(q[face_mask, a], config)
                 if edges is not None:
-                    lo[a], hi[a] = max(lo[a], edges[0]), min(hi[a], edges[1])
+                    lo[a] = max(lo[a], min(edges[0], lo[a] + config.front_edge_max_trim))
+                    hi[a] = min(hi[a], max(edges[1], hi[a] - config.front_edge_max_trim))
         seen = float(np.median(q[face_mask, k]))
         if side:                    # the seen face is the +k face: the board lies below it
             lo[k], hi[k] = seen - config.front_thickness, seen
