@@ -192,7 +192,9 @@ def _denoised(prim: Primitive, points: np.ndarray, config: ReconConfig,
     oriented normals show it was seen from one side only (a door, a drawer front; not a chair back) —
     is measured from the points of its face (normals along its thin axis): its in-plane edges where
     their density falls to ``front_edge_density`` of the face's (label bleed and the edges' own noise
-    lie beyond), its seen face at their median, and a ``front_thickness`` board behind it.
+    lie beyond), its seen face at their median, and a ``front_thickness`` board behind it. A front on
+    a clean scan thinner than that board (only its face was seen) gets the board behind its face
+    (measured: clean refrigerator doors came out 10 mm thick, their hinge 9-10 mm too far out).
 
     Returns (box, whether the front rule placed it).
     """
@@ -218,7 +220,22 @@ def _denoised(prim: Primitive, points: np.ndarray, config: ReconConfig,
             sigma = _mad_sigma(r)
             seen_mask = seen_mask | (face == (f ^ 1))
     if sigma < config.noise_floor:
-        return prim, False          # a clean scan: nothing to correct
+        # a clean scan: nothing to correct, but a front seen only by its face is a board, not a film
+        side = _seen_side(normals, _facing(normals, seen_mask, prim.T_world_part[:3, k], config),
+                          prim.T_world_part[:3, k])
+        lo, hi = -prim.size / 2, prim.size / 2
+        if side is None or prim.size[k] >= config.front_thickness or not _vertical_panel(
+                lo, hi, k, prim.T_world_part[:3, k], config):
+            return prim, False
+        lo, hi = lo.copy(), hi.copy()
+        seen = float(np.median(q[_facing(normals, seen_mask, prim.T_world_part[:3, k], config), k]))
+        if side:                    # (a face-only cloud got min_thickness about the face)
+            lo[k], hi[k] = seen - config.front_thickness, seen
+        else:
+            lo[k], hi[k] = seen, seen + config.front_thickness
+        T = prim.T_world_part.copy()
+        T[:3, 3] = prim.to_world(((lo + hi) / 2)[None])[0]
+        return Primitive(PrimitiveKind.BOX, hi - lo, T), True
     lo = np.percentile(q, 0.2, axis=0)
     hi = np.percentile(q, 99.8, axis=0)
     wide = all(prim.size[a] >= config.rim_min_extent for a in range(3) if a != k)

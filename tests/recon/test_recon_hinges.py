@@ -109,3 +109,18 @@ def test_panel_seen_from_both_sides_keeps_its_noise_corrected_thickness():
     raw = Primitive(PrimitiveKind.BOX, pts.max(axis=0) - pts.min(axis=0), T)
     box = denoised_box(raw, pts, ReconConfig(), nrm)
     assert box.size[0] > 0.03                      # not squashed to an 18 mm board
+
+
+def test_clean_front_seen_only_by_its_face_is_a_board_behind_it():
+    """A clean scan of a door shows its face only: the box is the 18 mm board behind that face (a
+    10 mm film about the face put the hinge 9 mm too far out)."""
+    rng = np.random.default_rng(2)
+    y, z = _grid(0.0, WIDTH, Z0, Z1, 0.008, rng)
+    pts = np.c_[np.full(len(y), BODY_FRONT + THICK), y, z]
+    nrm = np.tile([1.0, 0, 0], (len(y), 1))
+    _, door, _, _ = fit_part(pts, ReconConfig(), seed=0, normals=nrm)
+    lo, hi = door.corners().min(axis=0), door.corners().max(axis=0)
+    assert hi[0] == pytest.approx(BODY_FRONT + THICK, abs=1e-3)
+    assert lo[0] == pytest.approx(BODY_FRONT, abs=1e-3)
+    err, e = _hinge_error(door)
+    assert err < 0.002, f"hinge off by {e * 1000} mm"
