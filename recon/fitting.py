@@ -227,15 +227,11 @@ def _denoised(prim: Primitive, points: np.ndarray, config: ReconConfig,
         if side is None or prim.size[k] >= config.front_thickness or not _vertical_panel(
                 lo, hi, k, prim.T_world_part[:3, k], config):
             return prim, False
-        lo, hi = lo.copy(), hi.copy()
+        # (a face-only cloud got min_thickness about the face: the face is the median of its points)
         seen = float(np.median(q[_facing(normals, seen_mask, prim.T_world_part[:3, k], config), k]))
-        if side:                    # (a face-only cloud got min_thickness about the face)
-            lo[k], hi[k] = seen - config.front_thickness, seen
-        else:
-            lo[k], hi[k] = seen, seen + config.front_thickness
-        T = prim.T_world_part.copy()
-        T[:3, 3] = prim.to_world(((lo + hi) / 2)[None])[0]
-        return Primitive(PrimitiveKind.BOX, hi - lo, T), True
+        lo, hi = lo.copy(), hi.copy()
+        _board_behind(lo, hi, k, seen, side, config.front_thickness)
+        return _box_between(prim, lo, hi), True
     lo = np.percentile(q, 0.2, axis=0)
     hi = np.percentile(q, 99.8, axis=0)
     wide = all(prim.size[a] >= config.rim_min_extent for a in range(3) if a != k)
@@ -260,18 +256,25 @@ def _denoised(prim: Primitive, points: np.ndarray, config: ReconConfig,
                 if edges is not None:
                     lo[a] = max(lo[a], min(edges[0], lo[a] + config.front_edge_max_trim))
                     hi[a] = min(hi[a], max(edges[1], hi[a] - config.front_edge_max_trim))
-        seen = float(np.median(q[face_mask, k]))
-        if side:                    # the seen face is the +k face: the board lies below it
-            lo[k], hi[k] = seen - config.front_thickness, seen
-        else:
-            lo[k], hi[k] = seen, seen + config.front_thickness
+        _board_behind(lo, hi, k, float(np.median(q[face_mask, k])), side, config.front_thickness)
     for a in range(3):
         if hi[a] - lo[a] < config.min_thickness:
             mid = (hi[a] + lo[a]) / 2
             lo[a], hi[a] = mid - config.min_thickness / 2, mid + config.min_thickness / 2
+    return _box_between(prim, lo, hi), front
+
+
+def _box_between(prim: Primitive, lo: np.ndarray, hi: np.ndarray) -> Primitive:
+    """The box spanning [lo, hi] (3,) each, in ``prim``'s part frame, with ``prim``'s orientation."""
     T = prim.T_world_part.copy()
     T[:3, 3] = prim.to_world(((lo + hi) / 2)[None])[0]
-    return Primitive(PrimitiveKind.BOX, hi - lo, T), front
+    return Primitive(PrimitiveKind.BOX, hi - lo, T)
+
+
+def _board_behind(lo: np.ndarray, hi: np.ndarray, k: int, seen: float, side: bool, thickness: float) -> None:
+    """Set (in place) extent ``k`` of [lo, hi] to a ``thickness`` board whose seen face is at ``seen``:
+    below it when the +k face was seen (``side``), above it otherwise."""
+    lo[k], hi[k] = (seen - thickness, seen) if side else (seen, seen + thickness)
 
 
 def _vertical_panel(lo: np.ndarray, hi: np.ndarray, k: int, axis_k: np.ndarray, config: ReconConfig) -> bool:
