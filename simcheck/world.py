@@ -308,7 +308,8 @@ class World:
         c = self.client
         pb.resetSimulation(physicsClientId=c)
         pb.setPhysicsEngineParameter(fixedTimeStep=self.config.time_step, numSolverIterations=self.config.solver_iterations,
-                                     numSubSteps=0, deterministicOverlappingPairs=1, physicsClientId=c)
+                                     numSubSteps=0, deterministicOverlappingPairs=1,
+                                     contactBreakingThreshold=self.config.contact_breaking_threshold, physicsClientId=c)
         pb.setGravity(0, 0, -self.config.gravity, physicsClientId=c)
 
     def _load_floor(self) -> int:
