@@ -32,6 +32,17 @@ def _slab(R: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> Primitive:
     return Primitive(PrimitiveKind.BOX, hi - lo, T)
 
 
+def _end_slab(R: np.ndarray, lo: np.ndarray, hi: np.ndarray, axis: int, at_low: bool, w: float) -> Primitive:
+    """The ``w``-thick slab of the box ``lo``..``hi`` (body coordinates) at its low (``at_low``) or high end
+    along body axis ``axis``, world frame."""
+    slo, shi = lo.copy(), hi.copy()
+    if at_low:
+        shi[axis] = lo[axis] + w
+    else:
+        slo[axis] = hi[axis] - w
+    return _slab(R, slo, shi)
+
+
 def opening_axis(body: Primitive, normal: np.ndarray) -> tuple[int, float] | None:
     """(body axis index, sign) of the body face whose outward normal is ``normal`` (3,), or None when
     no face is within ``_OPEN_ALIGN`` of it."""
@@ -148,21 +159,6 @@ def drawer_shapes(front: Primitive, axis: np.ndarray, body: Primitive, config: R
     w = config.drawer_wall
     if np.any(hi - lo < 3 * w):
         return (front,)
-    parts = [front]
-    bottom_lo, bottom_hi = lo.copy(), hi.copy()
-    if sv > 0:
-        bottom_hi[v] = lo[v] + w
-    else:
-        bottom_lo[v] = hi[v] - w
-    parts.append(_slab(R, bottom_lo, bottom_hi))
-    for side in (lo[u], hi[u] - w):
-        slo, shi = lo.copy(), hi.copy()
-        slo[u], shi[u] = side, side + w
-        parts.append(_slab(R, slo, shi))
-    back_lo, back_hi = lo.copy(), hi.copy()
-    if s > 0:
-        back_hi[a] = lo[a] + w
-    else:
-        back_lo[a] = hi[a] - w
-    parts.append(_slab(R, back_lo, back_hi))
-    return tuple(parts)
+    return (front, _end_slab(R, lo, hi, v, sv > 0, w),                       # bottom
+            _end_slab(R, lo, hi, u, True, w), _end_slab(R, lo, hi, u, False, w),  # sides
+            _end_slab(R, lo, hi, a, s > 0, w))                                    # back
