@@ -23,6 +23,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from scenes.outcome import Outcome
+
 __all__ = ["main"]
 
 CATEGORIES = ("cabinet", "microwave", "refrigerator")
@@ -78,9 +80,9 @@ def _tasks_from_truth(truth_json: Path) -> list[tuple[str, str, str, str]]:
 
 def _reason_key(t) -> str:
     """A short tally key for a task's outcome: status + planner status or first failed criteria."""
-    if t.status.value == "not-planned":
-        return f"not-planned: {t.plan_status}"
-    if t.status.value == "certified":
+    if t.status in (Outcome.NOT_PLANNED, Outcome.UNREACHABLE):
+        return f"{t.status}: {t.plan_status}"
+    if t.status is Outcome.CERTIFIED:
         return "certified"
     return "failed: " + ", ".join(t.failed_criteria[:3])
 
@@ -267,10 +269,10 @@ def _report(truth_rows, recon_rows, wrong_rows) -> None:
         rows = []
         for kind in WRONG_KINDS:
             sel = [r.cert for r in wrong_rows if r.kind == kind]
-            rows.append([kind, len(sel), sum(t.ok for t in sel), sum(t.status.value == "failed" for t in sel),
-                         sum(t.status.value == "not-planned" for t in sel),
+            rows.append([kind, len(sel), sum(t.ok for t in sel), sum(t.status is Outcome.FAILED for t in sel),
+                         sum(t.status in (Outcome.NOT_PLANNED, Outcome.UNREACHABLE) for t in sel),
                          sum(_points_at_fault(kind, t.reason) for t in sel)])
-        _table("Wrong estimates --against truth", ["kind", "n", "CERTIFIED (false)", "failed", "not-planned",
+        _table("Wrong estimates --against truth", ["kind", "n", "CERTIFIED (false)", "failed", "not planned",
                                                    "reason names the fault"], rows)
 
 

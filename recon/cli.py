@@ -1,7 +1,8 @@
 """``recon`` command line: ``recon build SCAN --labels LABELS --out DIR``.
 
-Exit codes: 0 written; 2 the input could not be used (the message says why); 1 an unexpected
-reconstruction failure. Progress and warnings go to stderr; nothing is written unless every output
+Exit codes (:func:`scenes.outcome.exit_code`): 0 written; 2 the input could not be used (the message
+says why); 1 a reconstruction stage could not produce a valid model (names the object, part or joint);
+3 an internal error (one line naming what failed; ``-v`` logs the traceback). Progress and warnings go to stderr; nothing is written unless every output
 could be produced (scene.urdf, graph.json, preview.png).
 """
 
@@ -13,6 +14,7 @@ import sys
 from pathlib import Path
 
 from recon.errors import ReconError, ScanError
+from scenes.outcome import Outcome, exit_code, internal_error
 
 __all__ = ["main"]
 
@@ -42,25 +44,27 @@ def main(argv: list[str] | None = None) -> int:
         if not args.quiet:
             print(f"[{done}/{total}] {msg}", file=sys.stderr, flush=True)
 
-    from recon.pipeline import reconstruct_scan
-    from recon.scan import read_scan
-
     try:
+        from recon.pipeline import reconstruct_scan
+        from recon.scan import read_scan
+
         scan = read_scan(args.scan, args.labels)
         rec = reconstruct_scan(scan, level_floor=args.level_floor, seed=args.seed, progress=progress)
         paths = rec.write(args.out, preview_scan=None if args.no_preview else scan)
     except ScanError as exc:
         print(f"recon: error: {exc}", file=sys.stderr)
-        return 2
+        return exit_code([Outcome.UNUSABLE])
     except ReconError as exc:
         print(f"recon: reconstruction failed: {exc}", file=sys.stderr)
-        return 1
+        return exit_code([Outcome.FAILED])
+    except Exception as exc:
+        return internal_error("recon", f"reconstructing {args.scan}", exc)
     if not args.quiet:
         n_joints = sum(j.type.value != "fixed" for j in rec.joints())
         print(f"recon: {len(rec.objects)} objects, {n_joints} movable joints, {len(rec.warnings)} warnings, "
               f"{rec.timings.get('total', 0.0):.1f} s -> {', '.join(str(p) for p in paths.values())}",
               file=sys.stderr)
-    return 0
+    return exit_code([])
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 """``scenes`` command line: ``scenes list`` and ``scenes make NAME [--seed S] [--preset P] --out DIR``.
 
-Exit codes: 0 = done, 2 = bad arguments or a scene that cannot be made (the message says why).
+Exit codes (:func:`scenes.outcome.exit_code`): 0 done; 2 bad arguments or a scene that cannot be made
+(the message says why); 3 an internal error (one line naming what failed; ``-v`` logs the traceback).
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ import logging
 import sys
 
 from .errors import ScenesError
+from .outcome import Outcome, exit_code, internal_error
 
 __all__ = ["main"]
 
@@ -39,22 +41,25 @@ def main(argv: list[str] | None = None) -> int:
     args.quiet = getattr(args, "quiet", False)
     level = logging.INFO if getattr(args, "verbose", False) and not args.quiet else logging.WARNING
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
-    from .api import make_scene
-    from .builtin import SCENE_DESCRIPTIONS
-
-    if args.cmd == "list":
-        for name, desc in SCENE_DESCRIPTIONS.items():
-            sys.stdout.write(f"{name:10s} {desc}\n")
-        return 0
     try:
+        if args.cmd == "list":
+            from .builtin import SCENE_DESCRIPTIONS
+
+            for name, desc in SCENE_DESCRIPTIONS.items():
+                sys.stdout.write(f"{name:10s} {desc}\n")
+            return exit_code([])
+        from .api import make_scene
+
         made = make_scene(args.name, seed=args.seed, preset=args.preset, out=args.out,
                           scan=not args.no_scan, previews=not args.no_previews)
     except ScenesError as e:
         sys.stderr.write(f"scenes: error: {e}\n")
-        return 2
+        return exit_code([Outcome.UNUSABLE])
+    except Exception as e:
+        return internal_error("scenes", f"running scenes {args.cmd}", e)
     if not args.quiet:
         n = len(made.scan) if made.scan is not None else 0
         sys.stdout.write(f"{args.name} seed {args.seed}: {len(made.scene.objects)} objects, {n} scan points\n")
         for key, path in made.files.items():
             sys.stdout.write(f"  {key:13s} {path}\n")
-    return 0
+    return exit_code([])

@@ -5,7 +5,8 @@ Python API (for users' own pytest tests)::
     import simcheck
     cert = simcheck.certify("scene.urdf", ["open-drawer:cabinet3_drawer12_joint"], against="truth.urdf", seed=0)
     simcheck.assert_certified(cert)                 # AssertionError listing every failed criterion
-    cert.ok, cert["cabinet3_drawer12_joint"].status, cert.tasks[0].criterion("opened_fraction").margin
+    cert.ok, cert.exit_code, cert.tasks[0].criterion("opened_fraction").margin
+    cert["cabinet3_drawer12_joint"].status          # an Outcome: certified, failed, not_planned, unreachable, ...
 
     cert = simcheck.run_scenario("scenario.yaml")  # tasks in sequence, world state carried over
 
@@ -16,7 +17,7 @@ from __future__ import annotations
 
 import importlib
 
-__all__ = ["certify", "run_scenario", "assert_certified", "Certificate", "TaskCertificate", "TaskStatus", "Task",
+__all__ = ["certify", "run_scenario", "assert_certified", "Certificate", "TaskCertificate", "Outcome", "exit_code", "Task",
            "CriteriaConfig", "PhysicsConfig", "DEFAULT_CRITERIA", "DEFAULT_PHYSICS", "CriterionResult", "Rollout",
            "World", "SimRobot", "PlannedTask", "PlannedSegment", "PlanOutcome", "execute_task", "recheck_plan",
            "load_robot_spec", "load_scenario", "SimcheckError", "SimcheckInputError"]
@@ -24,7 +25,8 @@ __all__ = ["certify", "run_scenario", "assert_certified", "Certificate", "TaskCe
 _WHERE = {
     "certify": "simcheck.certification", "PlanOutcome": "simcheck.certification",
     "run_scenario": "simcheck.run", "assert_certified": "simcheck.run",
-    "Certificate": "simcheck.certificate", "TaskCertificate": "simcheck.certificate", "TaskStatus": "simcheck.certificate",
+    "Certificate": "simcheck.certificate", "TaskCertificate": "simcheck.certificate",
+    "Outcome": "scenes.outcome", "exit_code": "scenes.outcome",
     "Task": "simcheck.tasks",
     "CriteriaConfig": "simcheck.config", "PhysicsConfig": "simcheck.config", "DEFAULT_CRITERIA": "simcheck.config",
     "DEFAULT_PHYSICS": "simcheck.config",

@@ -1,43 +1,42 @@
 """The certificate: per task a status, a reason and every criterion; plus criteria version, seeds,
 software versions and timings. Written as ``certificate.json`` (atomically) and read back.
 
-``certificate.json`` (format ``partscene.certificate/1``)::
+``certificate.json`` (format ``partscene.certificate/2``; files of format 1 are read too)::
 
-    {"format": "partscene.certificate/1", "ok": false,
+    {"format": "partscene.certificate/2", "ok": false,
      "scene": "scene.urdf", "against": "truth.urdf" | null, "robot": "robot.urdf",
      "criteria": {"name": "partscene-default", "version": "1.0", ...thresholds...},
      "seeds": {"seed": 0}, "versions": {"pybullet": ..., "pinocchio": ..., "ompl": ..., "numpy": ..., "partscene": ...},
      "timings": {"total": s},
-     "tasks": [{"kind": "open-drawer", "joint": "...", "status": "certified" | "failed" | "not-planned",
+     "tasks": [{"kind": "open-drawer", "joint": "...", "status": "certified" | "failed" | "not_planned" | "unreachable" | ...,
                 "reason": "...", "amount": 0.31, "unit": "m", "seed": 0, "rollout": "rollouts/<joint>.npz",
+                "plan_status": "OK" | "NO_STAND_POSE" | ..., "start_state": {joint: value},
                 "images": ["images/<joint>_start.png", ...], "timings": {"plan": s, "recheck": s, "execute": s},
                 "criteria": [{"name", "value", "threshold", "comparison", "unit", "passed", "margin",
                               "description", "detail"}, ...]}]}
+
+``status`` is a :class:`scenes.outcome.Outcome` value; the run's exit code follows from the statuses
+(:func:`scenes.outcome.exit_code`).
 """
 
 from __future__ import annotations
 
-import enum
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from scenes.atomic_write import write_text_atomic
+from scenes.outcome import Outcome, exit_code
 from simcheck.criteria import CriterionResult
 from simcheck.errors import SimcheckInputError
 
-__all__ = ["TaskStatus", "TaskCertificate", "Certificate", "CERTIFICATE_FORMAT", "software_versions",
+__all__ = ["TaskCertificate", "Certificate", "CERTIFICATE_FORMAT", "software_versions",
            "write_json_atomic"]
 
-CERTIFICATE_FORMAT = "partscene.certificate/1"
-
-
-class TaskStatus(enum.Enum):
-    """Outcome of one task."""
-
-    CERTIFIED = "certified"
-    FAILED = "failed"
-    NOT_PLANNED = "not-planned"
+CERTIFICATE_FORMAT = "partscene.certificate/2"
+#: formats :meth:`Certificate.from_dict` reads (format 1 spells not_planned "not-planned" and marks an
+#: unreachable object as ``"input_problem": true``)
+READABLE_FORMATS = ("partscene.certificate/1", CERTIFICATE_FORMAT)
 
 
 @dataclass(frozen=True)
@@ -47,7 +46,7 @@ class TaskCertificate:
     Attributes:
         kind: "open-drawer" or "open-door".
         joint: the task joint (URDF name).
-        status: certified / failed / not-planned.
+        status: the task's :class:`~scenes.outcome.Outcome` (certified, failed, not_planned, unreachable, ...).
         reason: why (names the failed criteria, the joint and links involved, and with ``--against``
             how the estimate differs from the reference).
         amount: the requested opening, rad or m (``unit``).
@@ -57,15 +56,13 @@ class TaskCertificate:
         rollout: path of the saved rollout, relative to the certificate's folder ("" if not executed).
         images: key-frame PNG paths, relative to the certificate's folder.
         plan_status: the planner's status name ("OK", "NO_STAND_POSE", ...).
-        input_problem: True when the task failed because its input was unusable (e.g. the object is
-            unreachable): the CLI then exits with code 2.
         start_state: values of the executed scene's movable joints when the task started (a scenario
             carries them over from the previous task), rad or m by joint name.
     """
 
     kind: str
     joint: str
-    status: TaskStatus
+    status: Outcome
     reason: str
     amount: float
     unit: str
@@ -75,12 +72,11 @@ class TaskCertificate:
     rollout: str = ""
     images: tuple[str, ...] = ()
     plan_status: str = ""
-    input_problem: bool = False
     start_state: dict = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
-        return self.status is TaskStatus.CERTIFIED
+        return self.status is Outcome.CERTIFIED
 
     def criterion(self, name: str) -> CriterionResult:
         """The criterion called ``name`` (KeyError naming the task when absent)."""
@@ -96,18 +92,21 @@ class TaskCertificate:
     def to_dict(self) -> dict:
         return {"kind": self.kind, "joint": self.joint, "status": self.status.value, "reason": self.reason,
                 "amount": self.amount, "unit": self.unit, "seed": self.seed, "plan_status": self.plan_status,
-                "input_problem": self.input_problem, "start_state": dict(self.start_state),
+                "start_state": dict(self.start_state),
                 "timings": dict(self.timings), "rollout": self.rollout,
                 "images": list(self.images), "criteria": [c.to_dict() for c in self.criteria]}
 
     @classmethod
     def from_dict(cls, d: dict) -> "TaskCertificate":
-        return cls(kind=d["kind"], joint=d["joint"], status=TaskStatus(d["status"]), reason=d["reason"],
+        status = Outcome(d["status"])
+        if status is Outcome.NOT_PLANNED and d.get("input_problem") and d.get("plan_status") == "NO_STAND_POSE":
+            status = Outcome.UNREACHABLE   # how format 1 recorded an unreachable object
+        return cls(kind=d["kind"], joint=d["joint"], status=status, reason=d["reason"],
                    amount=float(d["amount"]) if d.get("amount") is not None else float("nan"), unit=d.get("unit", ""),
                    criteria=tuple(CriterionResult.from_dict(c) for c in d.get("criteria", [])),
                    seed=int(d.get("seed", 0)), timings=dict(d.get("timings", {})), rollout=d.get("rollout", ""),
                    images=tuple(d.get("images", [])), plan_status=d.get("plan_status", ""),
-                   input_problem=bool(d.get("input_problem", False)), start_state=dict(d.get("start_state", {})))
+                   start_state=dict(d.get("start_state", {})))
 
 
 @dataclass(frozen=True)
@@ -141,10 +140,8 @@ class Certificate:
 
     @property
     def exit_code(self) -> int:
-        """0: every task certified; 1: some task failed certification; 2: some task's input was unusable."""
-        if any(t.input_problem for t in self.tasks):
-            return 2
-        return 0 if self.ok else 1
+        """The run's exit code, :func:`scenes.outcome.exit_code` of the task statuses (0: all certified)."""
+        return exit_code(t.status for t in self.tasks)
 
     def summary(self) -> str:
         """One line per task: status, joint, reason."""
@@ -158,8 +155,9 @@ class Certificate:
 
     @classmethod
     def from_dict(cls, d: dict, path: Path | None = None) -> "Certificate":
-        if d.get("format") != CERTIFICATE_FORMAT:
-            raise SimcheckInputError(f"{path or 'certificate'}: format {d.get('format')!r}, expected {CERTIFICATE_FORMAT!r}")
+        if d.get("format") not in READABLE_FORMATS:
+            raise SimcheckInputError(f"{path or 'certificate'}: format {d.get('format')!r}, expected one of "
+                                     f"{READABLE_FORMATS}")
         return cls(tasks=tuple(TaskCertificate.from_dict(t) for t in d["tasks"]), scene=d["scene"],
                    against=d.get("against"), robot=d.get("robot", ""), criteria=dict(d.get("criteria", {})),
                    seeds=dict(d.get("seeds", {})), versions=dict(d.get("versions", {})),
@@ -176,7 +174,7 @@ class Certificate:
             path = path / "certificate.json"
         try:
             return cls.from_dict(json.loads(path.read_text()), path)
-        except (OSError, json.JSONDecodeError, KeyError) as exc:
+        except (OSError, json.JSONDecodeError, KeyError, ValueError) as exc:
             raise SimcheckInputError(f"{path}: not a readable certificate ({exc})") from exc
 
 

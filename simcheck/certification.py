@@ -20,7 +20,8 @@ from typing import Callable
 
 import numpy as np
 
-from simcheck.certificate import Certificate, TaskCertificate, TaskStatus, software_versions
+from scenes.outcome import Outcome
+from simcheck.certificate import Certificate, TaskCertificate, software_versions
 from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, PhysicsConfig
 from simcheck.criteria import CriterionResult, plan_collision_free, plan_found, rollout_criteria
 from simcheck.errors import RobotBindingError
@@ -34,12 +35,16 @@ from simcheck.scene_joints import read_scene_joints, scene_link_names
 from simcheck.tasks import Task, check_task, default_amount, parse_tasks
 from simcheck.world import World
 
-__all__ = ["certify", "PlanOutcome", "planners_planner", "Session", "INPUT_PROBLEM_STATUSES"]
+__all__ = ["certify", "PlanOutcome", "planners_planner", "Session", "outcome_of_unplanned"]
 
 log = logging.getLogger(__name__)
 
-#: planner statuses that mean the input cannot be certified (the object cannot be reached or grasped)
-INPUT_PROBLEM_STATUSES = ("NO_HANDLE", "NO_STAND_POSE")
+
+
+def outcome_of_unplanned(plan_status: str) -> Outcome:
+    """The task outcome when the planner returned ``plan_status`` (a ``planners.PlanStatus`` name, not OK):
+    ``unreachable`` when no base pose reaches the handle, ``not_planned`` for every other planning failure."""
+    return Outcome.UNREACHABLE if plan_status == "NO_STAND_POSE" else Outcome.NOT_PLANNED
 
 
 @dataclass(frozen=True)
@@ -158,16 +163,14 @@ class Session:
             timings.update({f"planner_{k}": float(v) for k, v in outcome.plan.timings.items()})
         unit = est.unit
         if not outcome.ok:
-            problem = outcome.status in INPUT_PROBLEM_STATUSES
             amount = task.amount if task.amount is not None else default_amount(task.kind, est, state.get(task.joint, 0.0))
             timings["total"] = time.perf_counter() - t_all
             reason = f"not planned ({outcome.status}): {outcome.reason}"
             hints = joint_differences(est, self.ref_joints.get(task.joint)) if self.against is not None else []
             if hints:
                 reason += " -- estimate vs reference: " + "; ".join(hints)
-            return TaskCertificate(task.kind, task.joint, TaskStatus.NOT_PLANNED, reason, float(amount), unit,
-                                   (plan_found(False, outcome.reason),), seed, timings, plan_status=outcome.status,
-                                   input_problem=problem)
+            return TaskCertificate(task.kind, task.joint, outcome_of_unplanned(outcome.status), reason, float(amount),
+                                   unit, (plan_found(False, outcome.reason),), seed, timings, plan_status=outcome.status)
         plan = outcome.plan
         t = time.perf_counter()
         check = recheck_plan(self.plan_world, plan, criteria)
@@ -233,9 +236,9 @@ class Session:
             worst = min(graded, key=lambda c: c.margin / abs(c.threshold) if c.threshold else c.margin)
             reason = (f"{len(crit)} criteria passed; smallest relative margin: {worst.name} "
                       f"({worst.value:.3g} vs {worst.comparison} {worst.threshold:.3g})")
-            status = TaskStatus.CERTIFIED
+            status = Outcome.CERTIFIED
         else:
-            status = TaskStatus.FAILED
+            status = Outcome.FAILED
             evidence = "; ".join(f"{c.name}: {c.detail}" for c in failed)
             hints = []
             if self.against is not None:

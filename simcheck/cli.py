@@ -4,8 +4,10 @@
                      [--against REFERENCE.urdf] [--out DIR] [--seed S] [--gui] [--video] [--robot SPEC]
     simcheck run SCENARIO.yaml [--out DIR] [--seed S] [--gui] [--video]
 
-Exit codes: 0 every task certified; 1 some task failed certification; 2 the input could not be used
-(the message says why: missing joint, fixed joint named as a drawer, broken URDF, unreachable object...).
+Exit codes (:func:`scenes.outcome.exit_code` of the task outcomes): 0 every task certified; 2 the input
+could not be used (the message says why: missing joint, fixed joint named as a drawer, broken URDF...);
+3 an internal error (one line naming what failed; ``-v`` logs the traceback); otherwise 1 (some task failed,
+was not planned or its object is unreachable).
 """
 
 from __future__ import annotations
@@ -68,11 +70,14 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
     if not args.quiet:
         logging.getLogger("simcheck.certification").setLevel(min(level, logging.INFO))
-    from simcheck.certification import certify
-    from simcheck.robot_spec_file import load_robot_spec
-    from simcheck.run import run_scenario
+    from scenes.outcome import Outcome, exit_code, internal_error
 
+    what = f"certifying {args.scene}" if args.command == "certify" else f"running scenario {args.scenario}"
     try:
+        from simcheck.certification import certify
+        from simcheck.robot_spec_file import load_robot_spec
+        from simcheck.run import run_scenario
+
         if args.command == "certify":
             robot = load_robot_spec(args.robot)
             cert = certify(args.scene, args.task, against=args.against, amounts=args.amount or None,
@@ -83,15 +88,15 @@ def main(argv: list[str] | None = None) -> int:
                                          video=args.video, gui=args.gui)
     except _input_errors() as exc:
         print(f"simcheck: error: {exc}", file=sys.stderr)
-        return 2
+        return exit_code([Outcome.UNUSABLE])
+    except Exception as exc:
+        return internal_error("simcheck", what, exc, log)
     print(cert.summary())
     print(f"certificate: {cert.path}")
-    code = cert.exit_code
-    if code == 2:
-        bad = [t for t in cert.tasks if t.input_problem]
-        for t in bad:
+    for t in cert.tasks:
+        if t.status is Outcome.UNUSABLE:
             print(f"simcheck: error: {t.kind}:{t.joint} cannot be certified: {t.reason}", file=sys.stderr)
-    return code
+    return cert.exit_code
 
 
 if __name__ == "__main__":

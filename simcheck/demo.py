@@ -36,6 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from scenes.atomic_write import write_text_atomic
+from scenes.outcome import Outcome
 from simcheck.report import DemoLayout, render_report
 
 __all__ = ["DemoConfig", "StageStatus", "StageRecord", "DemoResult", "TaskChoice", "choose_tasks", "usable_tasks",
@@ -269,7 +270,7 @@ def _stage_certify(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
                    out=lay.root, seed=cfg.seed)
     state["certificate"] = cert
     doc = json.loads(lay.certificate_json.read_text())
-    n_ok = sum(1 for t in doc.get("tasks", []) if t.get("status") == "certified")
+    n_ok = sum(1 for t in doc.get("tasks", []) if t.get("status") == Outcome.CERTIFIED)
     return f"{n_ok} of {len(doc.get('tasks', []))} tasks certified"
 
 

@@ -1,7 +1,7 @@
 """Errors raised by :mod:`simcheck` for inputs it cannot use.
 
 Expected outcomes (a task that fails certification, a plan that was not found) are never raised: they
-are :class:`simcheck.TaskCertificate` entries with a :class:`simcheck.TaskStatus` and a reason. The
+are :class:`simcheck.TaskCertificate` entries with a :class:`scenes.outcome.Outcome` and a reason. The
 exceptions below are for input that cannot be certified at all; every message names the file and the
 joint, link or field. The CLI maps :class:`SimcheckInputError` (and ``planners.PlannerInputError``) to
 exit code 2.

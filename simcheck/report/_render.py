@@ -15,6 +15,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from scenes.atomic_write import write_text_atomic
+from scenes.outcome import Outcome
 
 from ._errors import ArtifactError
 from ._html import badge, esc, img, note, num, page, section, table
@@ -124,7 +125,7 @@ def _tasks_section(lay: DemoLayout, cert: dict | None) -> str:
         if isinstance(task.get("timings"), Mapping) and "total" in task["timings"]:
             facts.append(f"took {num(task['timings']['total'], f'cert.{key}.timings.total', 's')}")
         head = (f"<h3>{esc(task.get('kind', task.get('task', 'task')))} "
-                f"<code>{esc(key)}</code> {badge(status, status == 'certified')}</h3>"
+                f"<code>{esc(key)}</code> {badge(status, status == Outcome.CERTIFIED)}</h3>"
                 f"<p>{esc(task.get('reason', ''))}</p><p class=\"facts\">{' &middot; '.join(facts)}</p>")
         figs = "".join(img(png, alt, f"task.{key}.{fig}")
                        for fig, alt, png in task_figures(lay, task, key, _required_fraction(cert),
@@ -138,7 +139,7 @@ def _tasks_section(lay: DemoLayout, cert: dict | None) -> str:
              + f", robot <code>{esc(Path(str(cert.get('robot', '?'))).name)}</code>.</p>")
     summary = where + table(["task", "status", "failed criteria"],
                     [[f'<a href="#task-{esc(_task_key(t, i))}">{esc(t.get("kind", ""))}:{esc(_task_key(t, i))}</a>',
-                      badge(str(t.get("status", "?")), t.get("status") == "certified"),
+                      badge(str(t.get("status", "?")), t.get("status") == Outcome.CERTIFIED),
                       esc(", ".join(c.get("name", "?") for c in t.get("criteria", [])
                                     if isinstance(c, Mapping) and c.get("passed") is False) or "none")]
                      for i, t in enumerate(tasks)], "summary")
@@ -212,7 +213,7 @@ def _lead(cert: dict | None) -> str:
     if cert is None:
         return "Scan &rarr; parts &rarr; joints &rarr; robot &rarr; certificate. No certificate yet."
     tasks = cert.get("tasks", []) if isinstance(cert.get("tasks"), list) else []
-    n_ok = sum(1 for t in tasks if t.get("status") == "certified")
+    n_ok = sum(1 for t in tasks if t.get("status") == Outcome.CERTIFIED)
     return (f"Scan &rarr; parts &rarr; joints &rarr; robot &rarr; certificate: "
             f"<b>{n_ok} of {len(tasks)} tasks certified</b>.")
 

@@ -9,6 +9,8 @@ from pathlib import Path
 import numpy as np
 from matplotlib import colormaps
 
+from scenes.outcome import Outcome
+
 from ._errors import ArtifactError
 from ._figure import hconcat_pngs, new_figure, png_from_figure
 from ._layout import DemoLayout
@@ -31,7 +33,7 @@ def _key_frame(lay: DemoLayout) -> tuple[str, np.ndarray] | None:
         return None
     cert = json.loads(lay.certificate_json.read_text())
     urdf = executed_urdf(lay, cert)
-    tasks = sorted(cert.get("tasks", []), key=lambda t: t.get("status") != "certified")
+    tasks = sorted(cert.get("tasks", []), key=lambda t: t.get("status") != Outcome.CERTIFIED)
     for task in tasks:
         key = str(task.get("joint"))
         path = rollout_path(lay, task, key)

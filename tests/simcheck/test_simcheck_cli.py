@@ -65,15 +65,15 @@ def test_unusable_input_exits_2_and_says_why(argv, message, tmp_path, capsys, mo
     assert message in capsys.readouterr().err
 
 
-def test_unreachable_object_exits_2(tmp_path, capsys):
+def test_unreachable_object_exits_1_and_says_unreachable(tmp_path, capsys):
     high = tmp_path / "high.urdf"
     high.write_text(CAB.read_text().replace('<origin xyz="1.5 0 0" rpy="0 0 3.141593"/>',
                                             '<origin xyz="1.5 0 2.6" rpy="0 0 3.141593"/>'))
-    assert main(["certify", str(high), "--task", f"open-drawer:{DRAWER}", "--out", str(tmp_path / "o"), "--no-images"]) == 2
-    err = capsys.readouterr().err
-    assert "cannot be certified" in err and DRAWER in err
+    assert main(["certify", str(high), "--task", f"open-drawer:{DRAWER}", "--out", str(tmp_path / "o"), "--no-images"]) == 1
+    out = capsys.readouterr().out
+    assert "unreachable" in out and DRAWER in out
     doc = json.loads((tmp_path / "o" / "certificate.json").read_text())
-    assert doc["tasks"][0]["status"] == "not-planned" and doc["tasks"][0]["input_problem"]
+    assert doc["tasks"][0]["status"] == "unreachable" and doc["tasks"][0]["plan_status"] == "NO_STAND_POSE"
 
 
 def test_certified_drawer_exits_0_and_writes_the_certificate(tmp_path, capsys):

@@ -5,7 +5,8 @@ import dataclasses
 import numpy as np
 import pytest
 
-from simcheck.certificate import Certificate, TaskStatus
+from scenes.outcome import Outcome
+from simcheck.certificate import Certificate
 from simcheck.certification import certify
 from simcheck.errors import RolloutFormatError, SceneLoadError, TaskSpecError
 from simcheck.execute import execute_task, handle_link_for
@@ -104,7 +105,7 @@ def test_a_grasp_above_the_handle_is_never_made_and_fails():
     plan = drawer_plan(handle=(0.29, 0.0, 0.76))          # 8 cm above the bar: fingers close on air
     cert = certify(CABINET, [f"open-drawer:{DRAWER}"], robot=ROBOT, planner=fixture_planner({DRAWER: plan}))
     t = cert[DRAWER]
-    assert t.status is TaskStatus.FAILED and cert.exit_code == 1
+    assert t.status is Outcome.FAILED and cert.exit_code == 1
     assert not t.criterion("grasp_held").passed and "0 of 2 required contacts" in t.criterion("grasp_held").detail
     assert not t.criterion("opened_fraction").passed
 
@@ -134,7 +135,7 @@ def test_a_colliding_plan_is_never_certified_and_the_contact_is_seen_in_physics(
     cert = certify(CABINET, [f"open-drawer:{DRAWER}"], robot=ROBOT, images=False,
                    planner=fixture_planner({DRAWER: _through_the_top_panel()}))
     t = cert[DRAWER]
-    assert t.status is TaskStatus.FAILED
+    assert t.status is Outcome.FAILED
     assert not t.criterion("plan_collision_free").passed
     hit = t.criterion("unexpected_contact_force")
     assert not hit.passed and ("cabinet1_body1" in hit.detail or "cabinet1_drawer2" in hit.detail)
@@ -152,7 +153,7 @@ def test_fixture_wrong_axis_estimate_fails_against_the_reference(tmp_path):
     cert = certify(est, [f"open-drawer:{DRAWER}"], against=CABINET, robot=ROBOT, images=False,
                    planner=fixture_planner({DRAWER: drawer_plan(axis_deg=30.0)}))
     t = cert[DRAWER]
-    assert t.status is TaskStatus.FAILED and "30 deg off the reference axis" in t.reason
+    assert t.status is Outcome.FAILED and "30 deg off the reference axis" in t.reason
     assert not t.criterion("handle_path_deviation").passed
 
 
@@ -160,7 +161,7 @@ def test_fixture_blocked_door_fails_and_names_the_blocker():
     cert = certify(CABINET, [f"open-door:{DOOR}"], against=CABINET_BLOCKED, robot=ROBOT, images=False,
                    planner=fixture_planner({DOOR: door_plan()}))
     t = cert[DOOR]
-    assert t.status is TaskStatus.FAILED and "box9_body9" in t.reason
+    assert t.status is Outcome.FAILED and "box9_body9" in t.reason
     assert not t.criterion("opened_fraction").passed
 
 

@@ -15,7 +15,7 @@ import json
 import pytest
 
 import scenes
-from simcheck.certificate import TaskStatus
+from scenes.outcome import Outcome
 from simcheck.certification import certify
 from simcheck.rollout import Rollout
 
@@ -85,7 +85,7 @@ KINDS = ["axis30", "wrong_hinge_side", "revolute_as_prismatic", "wider_limits", 
 def test_wrong_estimate_of_a_generated_scene_is_never_certified(kind, kitchen, tmp_path):
     est, task, ref, says = _wrong(kind, kitchen / "truth.urdf", K_DRAWER, K_FRIDGE, tmp_path)
     t = certify(est, [task], against=ref, images=False, seed=0).tasks[0]
-    assert t.status is not TaskStatus.CERTIFIED, f"FALSE CERTIFICATE ({kind}): {t.reason}"
+    assert t.status is not Outcome.CERTIFIED, f"FALSE CERTIFICATE ({kind}): {t.reason}"
     assert says in t.reason, t.reason
 
 
@@ -99,7 +99,7 @@ EVIDENCE = {"axis30": "handle_path_deviation", "wrong_hinge_side": "handle_path_
 def test_wrong_estimate_fails_in_physics_against_the_truth(kind, tmp_path):
     est, task, ref, says = _wrong(kind, PANDA_CABINET, P_DRAWER, P_DOOR, tmp_path)
     t = certify(est, [task], against=ref, images=False, seed=0).tasks[0]
-    assert t.status is TaskStatus.FAILED, f"{kind}: {t.status.value}: {t.reason}"
+    assert t.status is Outcome.FAILED, f"{kind}: {t.status.value}: {t.reason}"
     assert says in t.reason, t.reason
     assert not t.criterion(EVIDENCE[kind]).passed, t.reason
     assert t.criterion("plan_collision_free").passed          # the plan itself was fine on the estimate

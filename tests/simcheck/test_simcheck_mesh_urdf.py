@@ -11,7 +11,7 @@ import trimesh
 
 import simcheck
 import simcheck.estimate_faults as wrong
-from simcheck.certificate import TaskStatus
+from scenes.outcome import Outcome
 from simcheck.cli import main
 
 W, D, H, T = 0.6, 0.5, 0.8, 0.018   # carcass width (y), depth (x), height, panel thickness (m)
@@ -73,7 +73,7 @@ def test_a_mesh_cabinet_is_certified_and_pybullet_says_nothing_on_the_terminal(m
 def test_a_wrong_axis_estimate_of_the_mesh_cabinet_fails_against_it(mesh_cabinet, tmp_path):
     est = wrong.rotate_axis(mesh_cabinet, "Drawer Slide", 30.0, mesh_cabinet.parent / "axis30.urdf")
     t = simcheck.certify(est, ["open-drawer:Drawer Slide"], against=mesh_cabinet, images=False).tasks[0]
-    assert t.status is TaskStatus.FAILED, t.reason
+    assert t.status is Outcome.FAILED, t.reason
     assert "deg off the reference axis" in t.reason
 
 
