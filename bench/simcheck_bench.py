@@ -102,7 +102,7 @@ def _table(title: str, header: list[str], rows: list[list]) -> None:
 
 
 def _certify_each(simcheck_certify, scene: Path, tasks: list[str], against: Path | None, seed: int) -> list:
-    """One certificate task per task string (tasks are independent: the world is reset between them)."""
+    """One certificate task per task string (tasks are independent: each is judged in freshly loaded worlds)."""
     cert = simcheck_certify(scene, tasks, against=against, seed=seed, images=False)
     return list(cert.tasks)
 

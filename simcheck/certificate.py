@@ -58,6 +58,9 @@ class TaskCertificate:
         plan_status: the planner's status name ("OK", "NO_STAND_POSE", ...).
         start_state: values of the executed scene's movable joints when the task started (a scenario
             carries them over from the previous task), rad or m by joint name.
+        start_robot_q: the robot's controlled joints when the task's execution started (its rollout's
+            first sample; the robot's configuration when the task began if nothing was executed), rad or m
+            by joint name. A scenario's task starts where the previous one ended.
     """
 
     kind: str
@@ -73,6 +76,7 @@ class TaskCertificate:
     images: tuple[str, ...] = ()
     plan_status: str = ""
     start_state: dict = field(default_factory=dict)
+    start_robot_q: dict = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
@@ -92,7 +96,7 @@ class TaskCertificate:
     def to_dict(self) -> dict:
         return {"kind": self.kind, "joint": self.joint, "status": self.status.value, "reason": self.reason,
                 "amount": self.amount, "unit": self.unit, "seed": self.seed, "plan_status": self.plan_status,
-                "start_state": dict(self.start_state),
+                "start_state": dict(self.start_state), "start_robot_q": dict(self.start_robot_q),
                 "timings": dict(self.timings), "rollout": self.rollout,
                 "images": list(self.images), "criteria": [c.to_dict() for c in self.criteria]}
 
@@ -106,7 +110,7 @@ class TaskCertificate:
                    criteria=tuple(CriterionResult.from_dict(c) for c in d.get("criteria", [])),
                    seed=int(d.get("seed", 0)), timings=dict(d.get("timings", {})), rollout=d.get("rollout", ""),
                    images=tuple(d.get("images", [])), plan_status=d.get("plan_status", ""),
-                   start_state=dict(d.get("start_state", {})))
+                   start_state=dict(d.get("start_state", {})), start_robot_q=dict(d.get("start_robot_q", {})))
 
 
 @dataclass(frozen=True)

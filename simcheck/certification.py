@@ -31,6 +31,7 @@ from simcheck.keyframes import KeyFrameCamera
 from simcheck.plan_recheck import recheck_plan
 from simcheck.planned_task import PlannedTask, planned_task_from_plan
 from simcheck.robot_binding import SimRobot, sim_robot_from_spec
+from simcheck.rollout import Rollout
 from simcheck.scene_joints import read_scene_joints, scene_link_names
 from simcheck.tasks import Task, check_task, default_amount, parse_tasks
 from simcheck.world import World
@@ -99,12 +100,15 @@ def planners_planner(robot_spec=None, config=None) -> Callable:
 class Session:
     """Worlds for one certification run: the planning scene and (with ``against``) the reference.
 
-    The scene the plan is executed on keeps its state from task to task only when ``carry_state``
-    (scenarios); otherwise each task starts from the loaded (closed) state.
+    ``certify`` opens one Session per task, so each task is judged in freshly loaded worlds (its
+    certificate does not depend on the tasks before it); a scenario runs all its tasks in one Session,
+    the executed scene keeping its state from task to task. ``last_rollout`` is the rollout of the last
+    task executed (None if it was not executed); ``load_seconds`` the wall time its worlds took to load.
     """
 
     def __init__(self, scene: Path, against: Path | None, robot: SimRobot, physics: PhysicsConfig,
                  gui: bool = False) -> None:
+        t0 = time.perf_counter()
         self.scene, self.against, self.robot, self.physics = scene, against, robot, physics
         self.plan_world = World(scene, robot, physics, gui=gui and against is None)
         try:
@@ -115,8 +119,8 @@ class Session:
         self.scene_joints = read_scene_joints(scene)
         self.ref_joints = read_scene_joints(against) if against is not None else self.scene_joints
         self.scene_links = set(scene_link_names(scene))
-        self._initial = self.exec_world.snapshot()
-        self._initial_plan = self.plan_world.snapshot() if against is not None else None
+        self.last_rollout: Rollout | None = None
+        self.load_seconds = time.perf_counter() - t0
 
     def close(self) -> None:
         self.plan_world.close()
@@ -128,12 +132,6 @@ class Session:
 
     def __exit__(self, *exc) -> None:
         self.close()
-
-    def reset(self) -> None:
-        """Back to the loaded state (between independent tasks)."""
-        self.exec_world.restore(self._initial)
-        if self._initial_plan is not None:
-            self.plan_world.restore(self._initial_plan)
 
     def exec_state(self) -> dict[str, float]:
         """Current values of the executed scene's movable joints that the planning scene also has."""
@@ -153,6 +151,7 @@ class Session:
                  images: bool, video: bool, start=None) -> TaskCertificate:
         """Plan, re-check, execute and judge one task (the worlds are left in their end state)."""
         t_all = time.perf_counter()
+        self.last_rollout = None
         est = self.scene_joints[task.joint]
         state = self.exec_state()
         self.sync_plan_world(state)
@@ -206,6 +205,7 @@ class Session:
         rollout = execute_task(w, plan, self.physics, requested_amount=requested,
                                frame_callback=camera.snap if camera else None,
                                sample_callback=on_sample if camera is not None and video else None)
+        self.last_rollout = rollout
         timings["execute"] = time.perf_counter() - t
         timings["execute_cpu"] = time.process_time() - c0
         timings["simulated"] = rollout.duration
@@ -255,6 +255,23 @@ def _safe(name: str) -> str:
     return "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in name)
 
 
+def _run_task(session: Session, task: Task, planner: Callable, seed: int, criteria: CriteriaConfig,
+              out_dir: Path | None, images: bool, video: bool, start, load_seconds: float | None) -> TaskCertificate:
+    """Certify ``task`` in ``session``'s worlds as they are now; the certificate records the start state
+    (the executed scene's joints, the robot's configuration: see :class:`TaskCertificate`) and, when the
+    worlds were loaded for it, their loading time (``timings["load_worlds"]``, s)."""
+    log.info("certifying %s on %s%s", task, session.scene, f" against {session.against}" if session.against else "")
+    state = session.exec_state()
+    q_now = session.exec_world.robot_q()
+    cert = session.run_task(task, planner, seed, criteria, out_dir, images, video, start=start)
+    q0 = session.last_rollout.robot_q[0] if session.last_rollout is not None else q_now
+    timings = cert.timings if load_seconds is None else {**cert.timings, "load_worlds": load_seconds}
+    cert = dataclasses.replace(cert, start_state=state, timings=timings,
+                               start_robot_q=dict(zip(session.robot.joint_names, map(float, q0))))
+    log.info("%s: %s -- %s", task, cert.status.value, cert.reason)
+    return cert
+
+
 def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, planner: Callable | None = None,
             amounts=None, criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
             images: bool = True, video: bool = False, gui: bool = False, carry_state: bool = False) -> Certificate:
@@ -269,7 +286,8 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         robot: a ``planners.RobotSpec`` (or :class:`SimRobot` together with ``planner``); default robot if None.
         planner: ``planner(scene, task, seed, start, scene_state) -> PlanOutcome``; default planners'.
         amounts: one amount for all tasks or one per task (m or rad), for tasks without one.
-        carry_state: keep the world's state from task to task (a scenario) instead of resetting it.
+        carry_state: run the tasks one after the other in one world, its state carried from task to task
+            (a scenario); by default each task is judged in freshly loaded worlds.
 
     Raises:
         SimcheckInputError (SceneLoadError, TaskSpecError, RobotBindingError): unusable input, naming
@@ -295,17 +313,17 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
     sim_robot = sim_robot_from_spec(robot)
     out_dir = Path(out) if out is not None else None
     results = []
-    with Session(scene, against, sim_robot, physics, gui=gui) as session:
-        for i, task in enumerate(parsed):
-            if i and not carry_state:
-                session.reset()
-            start = session.exec_world.robot_q() if carry_state and i else None
-            log.info("certifying %s on %s%s", task, scene, f" against {against}" if against else "")
-            state = session.exec_state()
-            cert = session.run_task(task, planner, seed, criteria, out_dir, images, video, start=start)
-            cert = dataclasses.replace(cert, start_state=state)
-            log.info("%s: %s -- %s", task, cert.status.value, cert.reason)
-            results.append(cert)
+    if carry_state:
+        with Session(scene, against, sim_robot, physics, gui=gui) as session:
+            for i, task in enumerate(parsed):
+                start = session.exec_world.robot_q() if i else None
+                results.append(_run_task(session, task, planner, seed, criteria, out_dir, images, video, start,
+                                         None if i else session.load_seconds))
+    else:
+        for task in parsed:                       # fresh worlds: a task's verdict never depends on the others
+            with Session(scene, against, sim_robot, physics, gui=gui) as session:
+                results.append(_run_task(session, task, planner, seed, criteria, out_dir, images, video, None,
+                                         session.load_seconds))
     certificate = Certificate(tasks=tuple(results), scene=str(scene), against=str(against) if against else None,
                               robot=str(sim_robot.urdf), criteria=criteria.to_dict(), seeds={"seed": seed},
                               versions=software_versions(), timings={"total": time.perf_counter() - t0})

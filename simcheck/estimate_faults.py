@@ -7,6 +7,9 @@ Each function reads ``src``, changes one joint the way a bad reconstruction woul
 * :func:`rotate_axis`          -- a drawer axis ``deg`` degrees off (rotated about the joint frame's z);
 * :func:`flip_hinge`           -- a door hinged on the wrong side (same geometry, hinge on the other edge);
 * :func:`revolute_as_prismatic`-- a door estimated as a drawer sliding out along the door's initial motion;
+* :func:`shift_hinge`          -- a door's hinge line moved sideways and/or along the front normal;
+* :func:`tilt_hinge`           -- a door's hinge axis tilted ``deg`` degrees in the door's plane;
+* :func:`move_handle`          -- the handle (bar and standoffs) moved out of or into the front;
 * :func:`widen_limits`         -- joint limits ``factor`` times wider than the real ones;
 * :func:`add_box`              -- (for the reference) a neighbour the estimate does not have;
 * :func:`blocker_in_swing`     -- such a box placed in the swing of a door.
@@ -22,7 +25,8 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-__all__ = ["rotate_axis", "flip_hinge", "revolute_as_prismatic", "widen_limits", "add_box", "blocker_in_swing"]
+__all__ = ["rotate_axis", "flip_hinge", "shift_hinge", "tilt_hinge", "move_handle", "revolute_as_prismatic",
+           "widen_limits", "add_box", "blocker_in_swing"]
 
 
 def _load(src):
@@ -91,14 +95,23 @@ def _far_edge(root, j) -> np.ndarray:  # noqa: D401
     return best * best_d
 
 
-def flip_hinge(src, joint: str, out) -> Path:
-    """Door ``joint`` hinged on its other vertical edge: the hinge moves across the door's width, the
-    axis is reversed (so positive still opens outward) and the door's geometry stays where it was."""
-    tree = _load(src)
-    root = tree.getroot()
-    j = _joint(root, joint)
-    shift = _far_edge(root, j)
+def _front_normal(root, j) -> np.ndarray:
+    """Unit vector, in the child (joint) frame, out of the front of ``j``'s part: a drawer's axis; for a
+    door, the direction its free edge first moves in (axis x hinge-to-free-edge), since positive opens."""
+    a = _vec(j.find("axis"), "xyz", "1 0 0")
+    a = a / np.linalg.norm(a)
+    if j.get("type") == "prismatic":
+        return a
+    n = np.cross(a, _far_edge(root, j))
+    return n / np.linalg.norm(n)
+
+
+def _move_joint_keep_geometry(root, j, shift: np.ndarray) -> None:
+    """Move joint ``j``'s origin by ``shift`` (3,) metres, child frame, while the child's geometry, inertia
+    and child joints stay where they are in the world (the closed state is unchanged)."""
     origin = j.find("origin")
+    if origin is None:
+        origin = ET.SubElement(j, "origin")
     xyz, rpy = _vec(origin, "xyz"), _vec(origin, "rpy")
     origin.set("xyz", _fmt(xyz + Rotation.from_euler("xyz", rpy).apply(shift)))
     child = _child_link(root, j)
@@ -111,9 +124,71 @@ def flip_hinge(src, joint: str, out) -> Path:
     for other in root.findall("joint"):
         if other.find("parent").get("link") == child.get("name"):
             o = other.find("origin")
+            if o is None:
+                o = ET.SubElement(other, "origin")
             o.set("xyz", _fmt(_vec(o, "xyz") - shift))
+
+
+def flip_hinge(src, joint: str, out) -> Path:
+    """Door ``joint`` hinged on its other vertical edge: the hinge moves across the door's width, the
+    axis is reversed (so positive still opens outward) and the door's geometry stays where it was."""
+    tree = _load(src)
+    root = tree.getroot()
+    j = _joint(root, joint)
+    _move_joint_keep_geometry(root, j, _far_edge(root, j))
     axis = j.find("axis")
     axis.set("xyz", _fmt(-_vec(axis, "xyz")))
+    return _save(tree, out)
+
+
+def shift_hinge(src, joint: str, out, sideways: float = 0.0, normal: float = 0.0) -> Path:
+    """Door ``joint``'s hinge line moved ``sideways`` metres along the door's width (positive: toward
+    its free edge) and ``normal`` metres along its front normal (positive: out of the front); the door's
+    geometry stays where it was, so only the estimated articulation is wrong."""
+    tree = _load(src)
+    root = tree.getroot()
+    j = _joint(root, joint)
+    edge = _far_edge(root, j)
+    shift = sideways * edge / np.linalg.norm(edge) + normal * _front_normal(root, j)
+    _move_joint_keep_geometry(root, j, shift)
+    return _save(tree, out)
+
+
+def tilt_hinge(src, joint: str, deg: float, out) -> Path:
+    """Door ``joint``'s hinge axis tilted by ``deg`` degrees about the door's front normal (it leans in
+    the door's plane) through the joint origin; the geometry stays where it was."""
+    tree = _load(src)
+    root = tree.getroot()
+    j = _joint(root, joint)
+    n = _front_normal(root, j)
+    axis = j.find("axis")
+    axis.set("xyz", _fmt(Rotation.from_rotvec(np.deg2rad(deg) * n).apply(_vec(axis, "xyz", "1 0 0"))))
+    return _save(tree, out)
+
+
+def move_handle(src, joint: str, outward: float, out) -> Path:
+    """Every handle link fixed to ``joint``'s moving part (a fixed child joint whose child link's name
+    contains "handle") moved ``outward`` metres along the part's front normal: positive, the estimate's
+    bar stands farther out of the front than the source's (the source's bar sits deeper than
+    estimated); negative, nearer the front.
+
+    Raises:
+        KeyError: ``joint`` has no such handle link (naming the joint).
+    """
+    tree = _load(src)
+    root = tree.getroot()
+    j = _joint(root, joint)
+    n = _front_normal(root, j)
+    part = j.find("child").get("link")
+    handles = [h for h in root.findall("joint") if h.find("parent").get("link") == part
+               and h.get("type") == "fixed" and "handle" in h.find("child").get("link").lower()]
+    if not handles:
+        raise KeyError(f"joint {joint!r}: no handle link fixed to its part {part!r}")
+    for h in handles:
+        o = h.find("origin")
+        if o is None:
+            o = ET.SubElement(h, "origin")
+        o.set("xyz", _fmt(_vec(o, "xyz") + outward * n))
     return _save(tree, out)
 
 

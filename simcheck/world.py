@@ -704,15 +704,6 @@ class World:
             pb.restoreState(stateId=sid, physicsClientId=self.client)
             pb.removeState(sid, physicsClientId=self.client)
 
-    def snapshot(self) -> int:
-        """Save the whole simulation state; returns an id for :meth:`restore` (between tasks only)."""
-        return pb.saveState(physicsClientId=self.client)
-
-    def restore(self, state_id: int) -> None:
-        """Restore a :meth:`snapshot` (drops the grasp attachment first)."""
-        self.detach()
-        pb.restoreState(stateId=state_id, physicsClientId=self.client)
-
     def collisions_at(self, q: np.ndarray, fingers_open: bool, scene_q: dict[str, float],
                       min_depth: float) -> list[ContactPoint]:
         """Robot-scene/floor contacts deeper than ``min_depth`` (m) with the robot at ``q`` (dof,) and the

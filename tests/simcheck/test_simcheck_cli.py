@@ -5,10 +5,12 @@ import os
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from simcheck.cli import main
 from simcheck.errors import ScenarioError, TaskSpecError
+from simcheck.rollout import Rollout
 from simcheck.scenario import load_scenario
 from simcheck.tasks import Task, check_task, default_amount, parse_task, parse_tasks
 from simcheck.scene_joints import read_scene_joints
@@ -108,6 +110,11 @@ def test_scenario_runs_tasks_in_sequence_with_the_world_state_carried(tmp_path):
     # the door opened by the first task is still open when the second starts
     assert second["start_state"][DOOR] == pytest.approx(1.2, abs=0.05)
     assert first["amount"] == pytest.approx(1.2) and doc["seeds"] == {"seed": 1}
+    # the second task starts exactly where the first ended: the door's value and the robot's configuration
+    end = Rollout.load(tmp_path / "o" / first["rollout"])
+    assert second["start_state"][DOOR] == pytest.approx(end.object_q[-1], abs=1e-9)
+    assert list(second["start_robot_q"]) == list(end.robot_joint_names)
+    np.testing.assert_allclose(list(second["start_robot_q"].values()), end.robot_q[-1], atol=1e-9)
 
 
 def test_scenario_errors_name_the_file_and_field(tmp_path):
