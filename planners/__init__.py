@@ -20,13 +20,15 @@ grasp_point=None, grasp_link=None)``; ``plan_open_task(..., start=None, scene_st
 planned on raises ``PlannerInputError`` (file and joint named); every other outcome is a ``PlanResult``.
 """
 
-from planners.config import PlannerConfig
-from planners.errors import (HandleNotFoundError, PlannerError, PlannerInputError, RobotDescriptionError,
-                             SceneURDFError, TaskJointError)
-from planners.plan import default_amount, plan_open_task
-from planners.robot import RobotSpec, default_robot
-from planners.task import SEGMENT_NAMES, OpenTask, PlanResult, PlanStatus, Segment
+import lazy_loader
 
-__all__ = ["RobotSpec", "default_robot", "OpenTask", "plan_open_task", "PlanResult", "PlanStatus", "Segment",
-           "SEGMENT_NAMES", "PlannerConfig", "default_amount", "PlannerError", "PlannerInputError",
-           "SceneURDFError", "TaskJointError", "HandleNotFoundError", "RobotDescriptionError"]
+# Names are imported on first use: importing planners.task or planners.scene_urdf (pure modules) does not
+# load pinocchio, coal or OMPL; only planning does.
+__getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
+    "robot": ["RobotSpec", "default_robot"],
+    "task": ["OpenTask", "PlanResult", "PlanStatus", "Segment", "SEGMENT_NAMES"],
+    "plan": ["plan_open_task", "default_amount"],
+    "config": ["PlannerConfig"],
+    "errors": ["PlannerError", "PlannerInputError", "SceneURDFError", "TaskJointError", "HandleNotFoundError",
+               "RobotDescriptionError"],
+})

@@ -50,29 +50,17 @@ Python API::
 CLI: ``recon build SCAN --labels LABELS --out DIR [--level-floor] [--seed N] [-v|-q]``.
 """
 
-from recon.config import ReconConfig
-from recon.errors import ReconError, ReconstructionError, ScanError
-from recon.model import (ContactEdge, JointEstimate, JointType, ObjectReconstruction, PartFit,
-                         Reconstruction, SceneGraph)
-from recon.primitive import Primitive, PrimitiveKind, SurfacePlane
+import lazy_loader
 
-__all__ = [
-    "reconstruct", "read_scan", "read_graph_json", "ReconConfig",
-    "ReconError", "ScanError", "ReconstructionError",
-    "Primitive", "PrimitiveKind", "SurfacePlane",
-    "PartFit", "ContactEdge", "JointEstimate", "JointType", "ObjectReconstruction", "SceneGraph",
-    "Reconstruction", "Scan",
-]
-
-
-def __getattr__(name):  # lazy: importing recon must not import open3d / matplotlib
-    if name == "reconstruct":
-        from recon.pipeline import reconstruct
-        return reconstruct
-    if name in ("read_scan", "Scan"):
-        import recon.scan as _scan
-        return getattr(_scan, name)
-    if name == "read_graph_json":
-        from recon.graph_json import read_graph_json
-        return read_graph_json
-    raise AttributeError(f"module 'recon' has no attribute {name!r}")
+# Names are imported on first use: importing recon (or a pure module such as recon.model) does not load
+# open3d or matplotlib.
+__getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
+    "pipeline": ["reconstruct"],
+    "scan": ["read_scan", "Scan"],
+    "graph_json": ["read_graph_json"],
+    "config": ["ReconConfig"],
+    "errors": ["ReconError", "ScanError", "ReconstructionError"],
+    "primitive": ["Primitive", "PrimitiveKind", "SurfacePlane"],
+    "model": ["PartFit", "ContactEdge", "JointEstimate", "JointType", "ObjectReconstruction", "SceneGraph",
+              "Reconstruction"],
+})

@@ -16,15 +16,17 @@ degradations, presets), ``scan_io``, ``preview``; checks in ``validate``, ``over
 ``surface_distance``; every constant in ``config`` and ``scanner.params``.
 """
 
-from .api import MadeScene, list_scenes, make_scene
-from .builtin import SCENES, build_scene
-from .errors import PlacementError, ScanError, ScenesError, SceneSpecError
-from .model import ArticulatedObject, Joint, JointType, Part, Scene, Shape, ShapeType, Wall
-from .scanner import PRESETS, Scan, ScanParams, scan_scene
-from .truth_json import read_truth_json, write_truth_json
-from .truth_urdf import urdf_from_scene, write_truth_urdf
+import lazy_loader
 
-__all__ = ["make_scene", "MadeScene", "list_scenes", "build_scene", "SCENES", "scan_scene", "Scan",
-           "ScanParams", "PRESETS", "Scene", "ArticulatedObject", "Part", "Joint", "JointType", "Shape",
-           "ShapeType", "Wall", "write_truth_urdf", "urdf_from_scene", "write_truth_json", "read_truth_json",
-           "ScenesError", "SceneSpecError", "PlacementError", "ScanError"]
+# Names are imported on first use, so importing a light module (scenes.outcome, scenes.naming) or running
+# `scenes --help` does not load trimesh, scipy or open3d.
+__getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
+    "api": ["make_scene", "MadeScene", "list_scenes"],
+    "builtin": ["SCENES", "build_scene"],
+    "scanner": ["scan_scene", "Scan", "ScanParams", "PRESETS"],
+    "model": ["Scene", "ArticulatedObject", "Part", "Joint", "JointType", "Shape", "ShapeType", "Wall"],
+    "truth_urdf": ["write_truth_urdf", "urdf_from_scene"],
+    "truth_json": ["write_truth_json", "read_truth_json"],
+    "errors": ["ScenesError", "SceneSpecError", "PlacementError", "ScanError"],
+    "outcome": ["Outcome", "exit_code"],
+})

@@ -10,42 +10,25 @@ Python API (for users' own pytest tests)::
 
     cert = simcheck.run_scenario("scenario.yaml")  # tasks in sequence, world state carried over
 
-Names are imported lazily so ``import simcheck.report`` or ``simcheck.errors`` stays light (no PyBullet).
+Names are imported on first use, so ``import simcheck.report`` or ``simcheck.errors`` stays light (no PyBullet).
 """
 
-from __future__ import annotations
+import lazy_loader
 
-import importlib
-
-__all__ = ["certify", "run_scenario", "assert_certified", "Certificate", "TaskCertificate", "Outcome", "exit_code", "Task",
-           "CriteriaConfig", "PhysicsConfig", "DEFAULT_CRITERIA", "DEFAULT_PHYSICS", "CriterionResult", "Rollout",
-           "World", "SimRobot", "PlannedTask", "PlannedSegment", "PlanOutcome", "execute_task", "recheck_plan",
-           "load_robot_spec", "load_scenario", "SimcheckError", "SimcheckInputError"]
-
-_WHERE = {
-    "certify": "simcheck.certification", "PlanOutcome": "simcheck.certification",
-    "run_scenario": "simcheck.run", "assert_certified": "simcheck.run",
-    "Certificate": "simcheck.certificate", "TaskCertificate": "simcheck.certificate",
-    "Outcome": "scenes.outcome", "exit_code": "scenes.outcome",
-    "Task": "simcheck.tasks",
-    "CriteriaConfig": "simcheck.config", "PhysicsConfig": "simcheck.config", "DEFAULT_CRITERIA": "simcheck.config",
-    "DEFAULT_PHYSICS": "simcheck.config",
-    "CriterionResult": "simcheck.criteria", "Rollout": "simcheck.rollout", "World": "simcheck.world",
-    "SimRobot": "simcheck.robot_binding", "PlannedTask": "simcheck.planned_task", "PlannedSegment": "simcheck.planned_task",
-    "execute_task": "simcheck.execute", "recheck_plan": "simcheck.plan_recheck",
-    "load_robot_spec": "simcheck.robot_spec_file", "load_scenario": "simcheck.scenario",
-    "SimcheckError": "simcheck.errors", "SimcheckInputError": "simcheck.errors",
-}
-
-
-def __getattr__(name: str):
-    if name in _WHERE:
-        module = importlib.import_module(_WHERE[name])
-        value = getattr(module, name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'simcheck' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(list(globals()) + __all__)
+__getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
+    "certification": ["certify", "PlanOutcome"],
+    "run": ["run_scenario", "assert_certified"],
+    "certificate": ["Certificate", "TaskCertificate", "Outcome", "exit_code"],
+    "tasks": ["Task"],
+    "config": ["CriteriaConfig", "PhysicsConfig", "DEFAULT_CRITERIA", "DEFAULT_PHYSICS"],
+    "criteria": ["CriterionResult"],
+    "rollout": ["Rollout"],
+    "world": ["World"],
+    "robot_binding": ["SimRobot"],
+    "planned_task": ["PlannedTask", "PlannedSegment"],
+    "execute": ["execute_task"],
+    "plan_recheck": ["recheck_plan"],
+    "robot_spec_file": ["load_robot_spec"],
+    "scenario": ["load_scenario"],
+    "errors": ["SimcheckError", "SimcheckInputError"],
+})
