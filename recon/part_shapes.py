@@ -16,9 +16,10 @@ from __future__ import annotations
 import numpy as np
 
 from recon.config import ReconConfig
+from recon.model import JointEstimate, JointType
 from recon.primitive import Primitive, PrimitiveKind
 
-__all__ = ["carcass_shapes", "drawer_shapes", "opening_axis"]
+__all__ = ["carcass_shapes", "drawer_shapes", "opening_axis", "template_shapes"]
 
 _OPEN_ALIGN = 0.9
 """A body face is an opening when its outward normal is within ~25° of a front's opening normal."""
@@ -162,3 +163,28 @@ def drawer_shapes(front: Primitive, axis: np.ndarray, body: Primitive, config: R
     return (front, _end_slab(R, lo, hi, v, sv > 0, w),                       # bottom
             _end_slab(R, lo, hi, u, True, w), _end_slab(R, lo, hi, u, False, w),  # sides
             _end_slab(R, lo, hi, a, s > 0, w))                                    # back
+
+
+def template_shapes(joints: tuple[JointEstimate, ...], prims: dict[int, Primitive], labels: dict[int, str],
+                    config: ReconConfig) -> dict[int, tuple[Primitive, ...]]:
+    """{part_id: template shapes, world frame} of an object's drawers (front + box) and of the parents
+    of its drawers/doors (a carcass open at their fronts); parts not listed keep their primitive."""
+    opens: dict[int, list[tuple[np.ndarray, Primitive]]] = {}
+    out: dict[int, tuple[Primitive, ...]] = {}
+    for j in joints:
+        if j.type is JointType.FIXED or j.parent_part_id is None:
+            continue
+        if j.type is JointType.PRISMATIC:
+            normal = j.axis
+            if labels[j.child_part_id] == "drawer":
+                out[j.child_part_id] = drawer_shapes(prims[j.child_part_id], j.axis, prims[j.parent_part_id], config)
+        else:
+            n = np.cross(j.axis, prims[j.child_part_id].center - j.origin)
+            if np.linalg.norm(n) < 1e-9:
+                continue
+            normal = n / np.linalg.norm(n)
+        opens.setdefault(j.parent_part_id, []).append((normal, prims[j.child_part_id]))
+    for i, fronts in opens.items():
+        if labels[i] in ("body", "frame", "base"):
+            out[i] = carcass_shapes(prims[i], fronts, config)
+    return {i: s for i, s in out.items() if len(s) > 1}

@@ -16,9 +16,10 @@ import numpy as np
 
 from recon.config import ReconConfig
 from recon.model import ContactEdge
+from recon.primitive import Primitive
 from recon.templates import ROOT_LABELS, template_for
 
-__all__ = ["PartTree", "choose_root", "part_tree"]
+__all__ = ["PartTree", "choose_root", "part_distances", "part_tree"]
 
 
 @dataclass(frozen=True)
@@ -59,6 +60,17 @@ def choose_root(labels: dict[int, str], volumes: dict[int, float]) -> int:
         if ids:
             return max(ids, key=lambda i: (volumes[i], -i))
     return max(labels, key=lambda i: (volumes[i], -i))
+
+
+def part_distances(prims: dict[int, Primitive]) -> dict[tuple[int, int], float]:
+    """{(a, b): distance (m) from part b's corners and centre to part a's surface, min over them}."""
+    out = {}
+    for a, pa in prims.items():
+        for b, pb in prims.items():
+            if a != b:
+                q = np.vstack([pb.corners(), pb.center[None]])
+                out[(a, b)] = float(pa.surface_distance(q).min())
+    return out
 
 
 def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],

@@ -1,8 +1,21 @@
-"""``reconstruct``: the whole pipeline from a labelled scan to a :class:`Reconstruction`.
+"""``reconstruct``: the whole pipeline from a labelled scan to a :class:`Reconstruction`, as named stages.
 
-Stages per object: Eq. 3 fit of every part -> planes Π -> Eq. 1 contacts -> Eq. 4 tree -> Alg. 1
-refinement; then, for the scene: support relations and upright/resting poses; then joints (they need
-the final poses and the other objects' points for their limits); then object frames and relations.
+Stages, in order (each a function below; per-object state travels in an :class:`ObjectState`)::
+
+    level_floor        optional: the scan rotated so that its floor is z = 0, z up (leveling.py)
+    remove_outliers    statistical outliers dropped part by part (outliers.py)
+    fit_primitives     Eq. 3: the best primitive per part, the base part first (fitting.py)
+    complete_parts     hidden legs placed; legs, reaching and mounted parts extended (completion.py)
+    contact_graph      surface planes Π, then the Eq. 1 contacts between parts (planes.py, contacts.py)
+    build_part_tree    Eq. 4: the maximum spanning arborescence of the contacts (part_tree.py)
+    refine             Alg. 1: children rotated / moved onto their parents' planes (refinement.py)
+    shape_handles      a handle's bar and posts (knob: cap and stem) off its mount (handle_shapes.py)
+    place_on_supports  upright correction, then every object resting on the floor or its supporter
+    estimate_object_joints  joint type, axis, origin and swept limits (joints.py), template shapes,
+                       object frame -> ObjectReconstruction
+    scene graph        support and proximal relations; walls from the background (walls.py)
+
+Every length is in metres in the world frame of the scan (z up after ``level_floor``).
 """
 
 from __future__ import annotations
@@ -10,6 +23,7 @@ from __future__ import annotations
 import logging
 import time
 from collections.abc import Callable
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -18,21 +32,22 @@ from recon.completion import (complete_missing_legs, complete_mounted_parts, com
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.fitting import FitScore, fit_part
-from recon.handle_shapes import mounted_handle_shapes, posed_handle_shapes
+from recon.handle_shapes import HandleShapes, mounted_handle_shapes, posed_handle_shapes
 from recon.joints import estimate_joints
-from recon.model import JointType, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
-from recon.part_shapes import carcass_shapes, drawer_shapes
-from recon.part_tree import choose_root, part_tree
+from recon.model import ContactEdge, JointEstimate, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
+from recon.outliers import scan_without_outliers
+from recon.part_shapes import template_shapes
+from recon.part_tree import PartTree, choose_root, part_distances, part_tree
 from recon.planes import part_planes
 from recon.primitive import Primitive
 from recon.refinement import refine_parts
-from recon.scan import Scan, read_scan
+from recon.scan import ObjectPoints, Scan, read_scan
+from recon.scene_graph import (object_frame, object_front, proximal_relations, resting_on,
+                               support_relations, upright_correction)
 from recon.walls import walls_from_background
-from recon.scene_graph import (object_frame, proximal_relations, support_relations,
-                               upright_correction)
 from scenes.naming import joint_name, link_name, object_name
 
-__all__ = ["reconstruct", "reconstruct_scan"]
+__all__ = ["reconstruct", "reconstruct_scan", "ObjectState", "FittedPart"]
 
 log = logging.getLogger(__name__)
 
@@ -41,6 +56,68 @@ _NO_FIT = FitScore(0.0, 0.0, 0.0, 0.0, ())
 
 Progress = Callable[[str, int, int], None]
 """progress(message, done, total): called as objects are processed."""
+
+
+@dataclass(frozen=True, eq=False)
+class FittedPart:
+    """What Eq. 3 chose for one part: the primitive as fitted (world frame, before completion and
+    refinement), its score, every candidate's score {name: metres} and the part's number of points."""
+
+    primitive: Primitive
+    score: FitScore
+    candidate_scores: dict
+    n_points: int
+
+
+@dataclass(eq=False)
+class ObjectState:
+    """One object between stages; each stage fills or replaces its fields.
+
+    source : the object's scan points (:class:`recon.scan.ObjectPoints`)
+    labels : {part_id: label}; points : {part_id: (n, 3) world points} (a placed hidden part gets
+        its own few points, or samples of its primitive's surface)
+    base : part id of the base part (most points among the base labels), fitted first
+    fits : {part_id: FittedPart}
+    prims : {part_id: Primitive}, world frame: the current primitive of each part
+    contacts : every Eq. 1 contact edge; tree : the Eq. 4 part tree
+    handles : {part_id: HandleShapes} of the handles given a bar / knob
+    """
+
+    source: ObjectPoints
+    labels: dict[int, str]
+    points: dict[int, np.ndarray]
+    base: int
+    fits: dict[int, FittedPart] = field(default_factory=dict)
+    prims: dict[int, Primitive] = field(default_factory=dict)
+    contacts: tuple[ContactEdge, ...] = ()
+    tree: PartTree | None = None
+    handles: dict[int, HandleShapes] = field(default_factory=dict)
+
+    @property
+    def id(self) -> int:
+        return self.source.id
+
+    @property
+    def category(self) -> str:
+        return self.source.category
+
+    @property
+    def name(self) -> str:
+        return object_name(self.category, self.id)
+
+
+@dataclass(eq=False)
+class _Run:
+    """What every stage may report into: the config, the seed, warnings and stage timings (s)."""
+
+    config: ReconConfig
+    seed: int
+    warnings: list[str]
+    timings: dict[str, float] = field(default_factory=dict)
+
+    def warn(self, msg: str) -> None:
+        log.warning(msg)
+        self.warnings.append(msg)
 
 
 def reconstruct(scan_path, labels_path, *, config: ReconConfig = ReconConfig(), level_floor: bool = False,
@@ -55,213 +132,243 @@ def reconstruct(scan_path, labels_path, *, config: ReconConfig = ReconConfig(), 
                             level_floor=level_floor, seed=seed, progress=progress)
 
 
-def _part_seed(seed: int, part_id: int) -> int:
-    return (int(seed) * 1_000_003 + int(part_id) * 7919) % (2**31)
-
-
 def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_floor: bool = False,
                      seed: int = 0, progress: Progress | None = None) -> Reconstruction:
     """:func:`reconstruct` on an already read :class:`recon.scan.Scan`."""
     t_start = time.perf_counter()
-    timings: dict[str, float] = {}
-    warnings = list(scan.warnings)
-
-    def warn(msg: str):
-        log.warning(msg)
-        warnings.append(msg)
-
+    run = _Run(config, int(seed), list(scan.warnings))
     if level_floor:
-        from recon.leveling import floor_transform
-
-        T, tilt = floor_transform(scan, config, seed)
-        scan = scan.transformed(T)
-        log.info("levelled the scan: up direction was %.1f deg off", np.degrees(tilt))
-        timings["level_floor"] = time.perf_counter() - t_start
-
+        scan = level_scan(scan, run)
+        run.timings["level_floor"] = time.perf_counter() - t_start
     t0 = time.perf_counter()
-    scan, removed = _without_outliers(scan, config)
-    timings["outliers"] = time.perf_counter() - t0
-    if removed:
-        log.info("removed %d outlier points (flying pixels)", removed)
+    scan = remove_outliers(scan, run)
+    run.timings["outliers"] = time.perf_counter() - t0
+
     n_obj = len(scan.objects)
-    staged = []   # (obj, labels, fits, contacts, tree, prims)
-    handle_shapes = {}   # {part_id: HandleShapes}: a handle's bar and posts, posed with its primitive at the end
+    states = []
     t0 = time.perf_counter()
     for k, obj in enumerate(scan.objects):
         if progress:
             progress(f"fitting {object_name(obj.category, obj.id)} ({len(obj.parts)} parts)", k, n_obj)
-        labels = {p.part_id: p.label for p in obj.parts}
-        fits = {}
-        # the base part first (most points among the base labels): its axes guide the small parts
-        base = choose_root(labels, {p.part_id: float(len(p.points)) for p in obj.parts})
-        ordered = sorted(obj.parts, key=lambda p: p.part_id != base)
-        R_ref = None
-        for p in ordered:
-            shape = _degeneracy(p.points, config.min_thickness)
-            if shape:
-                warn(f"object {obj.id} ({obj.category}) part {p.part_id} ({p.label}): its points are {shape}; "
-                     f"the primitive is given the minimum thickness {config.min_thickness} m")
-            small = len(p.points) < config.small_part_points
-            name, prim, score, table = fit_part(p.points, config, seed=_part_seed(seed, p.part_id),
-                                                normals=p.normals, R_world_ref=R_ref if small else None)
-            if p.part_id == base:
-                R_ref = prim.T_world_part[:3, :3].copy()
-            fits[p.part_id] = (prim, score, table, len(p.points))
-            log.debug("object %d part %d (%s): %s, score %.4f", obj.id, p.part_id, p.label, name, score.total)
-        prims = {i: f[0] for i, f in fits.items()}
-        pts_by_part = {p.part_id: p.points for p in obj.parts}
-        prims, placed = complete_missing_legs(obj.category, prims, labels, obj.skipped, config, base)
-        for i, centre in placed.items():
-            leg = next(p for p in obj.skipped if p.part_id == i)
-            labels[i] = leg.label
-            fits[i] = (prims[i], _NO_FIT, {}, len(leg.points))
-            pts_by_part[i] = leg.points if len(leg.points) >= 3 else prims[i].sample_surface(
-                config.surface_samples, np.random.default_rng(_part_seed(seed, i)))[0]
-            warn(f"{link_name(obj.category, obj.id, leg.label, i)}: part {i} ({leg.label}) has "
-                 f"{len(leg.points)} points; placed at the free corner of its fitted legs' rectangle "
-                 f"({centre[0]:.3f}, {centre[1]:.3f})")
-        prims, reached = complete_reaching_parts(prims, labels, config)
-        for i, gap in reached.items():
-            log.info("object %d part %d (%s): extended %.3f m to the part it reaches", obj.id, i, labels[i], gap)
-        prims, completed = complete_vertical_parts(prims, labels, config)
-        for i, (down, up) in completed.items():
-            log.info("object %d part %d (%s): extended %.3f m down, %.3f m up to its supports",
-                     obj.id, i, labels[i], down, up)
-        prims, mounted = complete_mounted_parts(prims, labels, config)
-        for i, gap in mounted.items():
-            log.info("object %d part %d (%s): extended %.3f m back onto its mount", obj.id, i, labels[i], gap)
-        planes = {i: part_planes(prims[i], pts_by_part[i], config, _part_seed(seed, i)) for i in prims}
-        contacts = contact_edges(planes, config)
-        tree = part_tree(obj.category, labels, {i: prims[i].volume for i in prims}, contacts, config,
-                         distances=_part_distances(prims))
-        for i in tree.isolated:
-            warn(f"{link_name(obj.category, obj.id, labels[i], i)}: part {i} ({labels[i]}) touches no "
-                 f"other part of object {obj.id}; fixed to the nearest possible parent, part {tree.parent[i]} "
-                 f"({labels[tree.parent[i]]})")
-        if config.refine:
-            prims = refine_parts(prims, tree, config)
-        # the bar where its points are, its posts reaching back to the (refined) mount face
-        prims, handles = mounted_handle_shapes(prims, labels, pts_by_part, config, object_name(obj.category, obj.id),
-                                               tree.parent)
-        handle_shapes.update(handles)
-        staged.append((obj, labels, fits, contacts, tree, prims))
-    timings["parts"] = time.perf_counter() - t0
+        state = fit_primitives(obj, run)
+        complete_parts(state, run)
+        contact_graph(state, run)
+        build_part_tree(state, run)
+        refine(state, run)
+        shape_handles(state, run)
+        states.append(state)
+    run.timings["parts"] = time.perf_counter() - t0
 
-    # scene: support and upright poses (floor-supported objects first, then what stands on them)
     t0 = time.perf_counter()
-    by_id = {s[0].id: s for s in staged}
-    for s in staged:
-        obj, _, _, _, tree, prims = s
-        R = upright_correction(prims[tree.root], config)
-        if not np.allclose(R, np.eye(3)):
-            c = np.concatenate([p.corners() for p in prims.values()])
-            pivot = np.array([*c[:, :2].mean(axis=0), c[:, 2].min()])
-            M = np.eye(4)
-            M[:3, :3], M[:3, 3] = R, pivot - R @ pivot
-            for i in prims:
-                prims[i] = prims[i].transformed(M)
-    support = support_relations({i: list(s[5].values()) for i, s in by_id.items()}, config)
-    order = sorted(by_id, key=lambda i: (support[i][0] is not None, i))
-    for i in order:
-        sup, _ = support[i]
-        prims = by_id[i][5]
-        top = 0.0 if sup is None else max(float(p.corners()[:, 2].max()) for p in by_id[sup][5].values())
-        bottom = min(float(p.corners()[:, 2].min()) for p in prims.values())
-        if bottom > config.support_distance and sup is None:
-            warn(f"{object_name(by_id[i][0].category, i)}: floats {bottom:.3f} m above the floor with "
-                 "nothing under it; left where it was scanned")
-            continue
-        if bottom < top:
-            # sunk into its support: noise below the floor / a top surface; cut the parts there
-            # instead of lifting the whole object (which would move its fitted drawers and doors)
-            for k in prims:
-                prims[k] = _clipped_below(prims[k], top)
-            bottom = min(float(p.corners()[:, 2].min()) for p in prims.values())
-        if abs(top - bottom) > 1e-9:
-            M = np.eye(4)
-            M[2, 3] = top - bottom
-            for k in prims:
-                prims[k] = prims[k].transformed(M)
-    timings["support"] = time.perf_counter() - t0
+    support = place_on_supports(states, run)
+    run.timings["support"] = time.perf_counter() - t0
+    # the parts are at their final poses from here on: a step that changes them goes here
 
-    # joints (limits sweep against every other scan point)
     t0 = time.perf_counter()
-    all_pts = scan.points
-    all_part = scan.part_id
-    # other objects are solid: their fitted primitives' surfaces join the scan points as obstacles
-    # (a scan only has the faces the camera saw; a door must not swing into a neighbour's hidden side)
-    rng = np.random.default_rng(seed)
-    shells = {s[0].id: np.concatenate([_surface_samples(p, config.obstacle_spacing, rng) for p in s[5].values()])
-              for s in staged}
-
-    def obstacles_for_object(oid):
-        others = [v for k, v in shells.items() if k != oid]
-
-        def obstacles_for(part_ids):
-            pts = all_pts[~np.isin(all_part, list(part_ids))]
-            return np.concatenate([pts] + others) if others else pts
-        return obstacles_for
-
+    obstacles = _Obstacles(scan, states, run)
     objects = []
-    for k, (obj, labels, fits, contacts, tree, prims) in enumerate(staged):
+    for k, state in enumerate(states):
         if progress:
-            progress(f"joints of {object_name(obj.category, obj.id)}", k, n_obj)
-        names = {i: joint_name(obj.category, obj.id, labels[i], i) for i in labels}
-        joints = estimate_joints(obj.category, names, labels, prims, tree, obstacles_for_object(obj.id),
-                                 config, warn)
-        shapes = template_shapes(joints, prims, labels, config) if config.template_shapes else {}
-        shapes.update(posed_handle_shapes(handle_shapes, prims))
-        parts = tuple(
-            PartFit(i, labels[i], link_name(obj.category, obj.id, labels[i], i), prims[i],
-                    float(fits[i][1].total), dict(fits[i][2]), int(fits[i][3]),
-                    prims[i].planes(config.cylinder_side_faces), shapes.get(i, ()))
-            for i in labels)
-        front = _front(joints, prims)
-        T_wo, size = object_frame([prims[tree.root]] + [p for i, p in prims.items() if i != tree.root], front)
-        objects.append(ObjectReconstruction(
-            obj.id, obj.category, object_name(obj.category, obj.id), tree.root, parts, contacts, joints,
-            tree.isolated, T_wo, size, support[obj.id][0]))
-    timings["joints"] = time.perf_counter() - t0
-    prox = proximal_relations({o.id: list(o.primitives().values()) for o in objects}, config)
-    graph = SceneGraph(tuple((o.id, o.supported_by) for o in objects), prox)
+            progress(f"joints of {state.name}", k, n_obj)
+        objects.append(estimate_object_joints(state, obstacles, support[state.id][0], run))
+    run.timings["joints"] = time.perf_counter() - t0
+
+    graph = SceneGraph(tuple((o.id, o.supported_by) for o in objects),
+                       proximal_relations({o.id: list(o.primitives().values()) for o in objects}, config))
     walls = ()
     if config.walls:
         t0 = time.perf_counter()
-        labelled = scan.object_id >= 0
-        centre = scan.points[labelled].mean(axis=0) if labelled.any() else scan.points.mean(axis=0)
-        walls = walls_from_background(scan.points[~labelled], centre, config, seed)
-        timings["walls"] = time.perf_counter() - t0
-    timings["total"] = time.perf_counter() - t_start
+        walls = room_walls(scan, run)
+        run.timings["walls"] = time.perf_counter() - t0
+    run.timings["total"] = time.perf_counter() - t_start
     if progress:
         progress("done", n_obj, n_obj)
-    return Reconstruction(tuple(objects), graph, tuple(warnings), config, int(seed), timings, walls)
+    return Reconstruction(tuple(objects), graph, tuple(run.warnings), config, run.seed, run.timings, walls)
 
 
-def _without_outliers(scan: Scan, config: ReconConfig) -> tuple[Scan, int]:
-    """The scan without statistical outliers, judged part by part (and the background as one cloud)."""
-    from dataclasses import replace
+# --- scan stages ---------------------------------------------------------------------------------------
 
-    from recon.outliers import statistical_inliers
+def level_scan(scan: Scan, run: _Run) -> Scan:
+    """The scan moved rigidly so that its floor plane is z = 0 with z up (leveling.py)."""
+    from recon.leveling import floor_transform
 
-    keep = np.ones(len(scan.points), dtype=bool)
-    for pid in np.unique(scan.part_id[scan.part_id >= 0]):
-        idx = np.flatnonzero(scan.part_id == pid)
-        keep[idx] = statistical_inliers(scan.points[idx], neighbors=config.outlier_neighbors,
-                                        std_ratio=config.outlier_std_ratio)
-    objects = []
-    for o in scan.objects:
-        parts = []
-        for p in o.parts:
-            m = keep[scan.part_id == p.part_id]
-            if len(m) != len(p.points):    # points of this part carried another object id
-                m = statistical_inliers(p.points, neighbors=config.outlier_neighbors,
-                                        std_ratio=config.outlier_std_ratio)
-            parts.append(replace(p, points=p.points[m], normals=None if p.normals is None else p.normals[m]))
-        objects.append(replace(o, parts=tuple(parts)))
-    cleaned = replace(scan, points=scan.points[keep], object_id=scan.object_id[keep], part_id=scan.part_id[keep],
-                      normals=None if scan.normals is None else scan.normals[keep],
-                      colors=None if scan.colors is None else scan.colors[keep], objects=tuple(objects))
-    return cleaned, int((~keep).sum())
+    T, tilt = floor_transform(scan, run.config, run.seed)
+    log.info("levelled the scan: up direction was %.1f deg off", np.degrees(tilt))
+    return scan.transformed(T)
+
+
+def remove_outliers(scan: Scan, run: _Run) -> Scan:
+    """The scan without statistical outliers (flying pixels), judged part by part."""
+    scan, removed = scan_without_outliers(scan, neighbors=run.config.outlier_neighbors,
+                                          std_ratio=run.config.outlier_std_ratio)
+    if removed:
+        log.info("removed %d outlier points (flying pixels)", removed)
+    return scan
+
+
+# --- object stages -------------------------------------------------------------------------------------
+
+def _part_seed(seed: int, part_id: int) -> int:
+    return (int(seed) * 1_000_003 + int(part_id) * 7919) % (2**31)
+
+
+def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
+    """Eq. 3 for every part of ``obj``: the base part first, whose axes then orient the small parts
+    (fewer than ``small_part_points`` points)."""
+    config = run.config
+    labels = {p.part_id: p.label for p in obj.parts}
+    base = choose_root(labels, {p.part_id: float(len(p.points)) for p in obj.parts})
+    state = ObjectState(obj, labels, {p.part_id: p.points for p in obj.parts}, base)
+    R_ref = None
+    for p in sorted(obj.parts, key=lambda p: p.part_id != base):
+        shape = _degeneracy(p.points, config.min_thickness)
+        if shape:
+            run.warn(f"object {obj.id} ({obj.category}) part {p.part_id} ({p.label}): its points are {shape}; "
+                     f"the primitive is given the minimum thickness {config.min_thickness} m")
+        small = len(p.points) < config.small_part_points
+        name, prim, score, table = fit_part(p.points, config, seed=_part_seed(run.seed, p.part_id),
+                                            normals=p.normals, R_world_ref=R_ref if small else None)
+        if p.part_id == base:
+            R_ref = prim.T_world_part[:3, :3].copy()
+        state.fits[p.part_id] = FittedPart(prim, score, table, len(p.points))
+        log.debug("object %d part %d (%s): %s, score %.4f", obj.id, p.part_id, p.label, name, score.total)
+    state.prims = {i: f.primitive for i, f in state.fits.items()}
+    return state
+
+
+def complete_parts(state: ObjectState, run: _Run) -> None:
+    """Hidden legs placed at the free corner of their fitted legs' rectangle; legs, parts that reach
+    another part and mounted parts (handles) extended onto what they stand on (completion.py)."""
+    config, obj, labels = run.config, state.source, state.labels
+    prims, placed = complete_missing_legs(obj.category, state.prims, labels, obj.skipped, config, state.base)
+    for i, centre in placed.items():
+        leg = next(p for p in obj.skipped if p.part_id == i)
+        labels[i] = leg.label
+        state.fits[i] = FittedPart(prims[i], _NO_FIT, {}, len(leg.points))
+        state.points[i] = leg.points if len(leg.points) >= 3 else prims[i].sample_surface(
+            config.surface_samples, np.random.default_rng(_part_seed(run.seed, i)))[0]
+        run.warn(f"{link_name(obj.category, obj.id, leg.label, i)}: part {i} ({leg.label}) has "
+                 f"{len(leg.points)} points; placed at the free corner of its fitted legs' rectangle "
+                 f"({centre[0]:.3f}, {centre[1]:.3f})")
+    prims, reached = complete_reaching_parts(prims, labels, config)
+    for i, gap in reached.items():
+        log.info("object %d part %d (%s): extended %.3f m to the part it reaches", obj.id, i, labels[i], gap)
+    prims, completed = complete_vertical_parts(prims, labels, config)
+    for i, (down, up) in completed.items():
+        log.info("object %d part %d (%s): extended %.3f m down, %.3f m up to its supports",
+                 obj.id, i, labels[i], down, up)
+    prims, mounted = complete_mounted_parts(prims, labels, config)
+    for i, gap in mounted.items():
+        log.info("object %d part %d (%s): extended %.3f m back onto its mount", obj.id, i, labels[i], gap)
+    state.prims = prims
+
+
+def contact_graph(state: ObjectState, run: _Run) -> None:
+    """The surface planes Π of every part, then every directed Eq. 1 contact between them."""
+    planes = {i: part_planes(state.prims[i], state.points[i], run.config, _part_seed(run.seed, i))
+              for i in state.prims}
+    state.contacts = contact_edges(planes, run.config)
+
+
+def build_part_tree(state: ObjectState, run: _Run) -> None:
+    """Eq. 4: the part tree; a part that touches nothing is fixed to its nearest possible parent and
+    reported."""
+    prims, labels = state.prims, state.labels
+    state.tree = tree = part_tree(state.category, labels, {i: prims[i].volume for i in prims}, state.contacts,
+                                  run.config, distances=part_distances(prims))
+    for i in tree.isolated:
+        run.warn(f"{link_name(state.category, state.id, labels[i], i)}: part {i} ({labels[i]}) touches no "
+                 f"other part of object {state.id}; fixed to the nearest possible parent, part {tree.parent[i]} "
+                 f"({labels[tree.parent[i]]})")
+
+
+def refine(state: ObjectState, run: _Run) -> None:
+    """Alg. 1 (when ``config.refine``): each child rotated, then moved, onto its parent's planes."""
+    if run.config.refine:
+        state.prims = refine_parts(state.prims, state.tree, run.config)
+
+
+def shape_handles(state: ObjectState, run: _Run) -> None:
+    """Each handle's bar where its points are, its posts reaching back to the (refined) mount face."""
+    state.prims, state.handles = mounted_handle_shapes(state.prims, state.labels, state.points, run.config,
+                                                       state.name, state.tree.parent)
+
+
+# --- scene stages --------------------------------------------------------------------------------------
+
+def place_on_supports(states: list[ObjectState], run: _Run) -> dict[int, tuple[int | None, float]]:
+    """Every object set upright (tilt below ``max_upright_tilt``), then resting on the floor or its
+    supporter, floor-supported objects first; returns :func:`recon.scene_graph.support_relations`."""
+    config = run.config
+    for s in states:
+        R = upright_correction(s.prims[s.tree.root], config)
+        if not np.allclose(R, np.eye(3)):
+            c = np.concatenate([p.corners() for p in s.prims.values()])
+            pivot = np.array([*c[:, :2].mean(axis=0), c[:, 2].min()])
+            M = np.eye(4)
+            M[:3, :3], M[:3, 3] = R, pivot - R @ pivot
+            s.prims = {i: p.transformed(M) for i, p in s.prims.items()}
+    by_id = {s.id: s for s in states}
+    support = support_relations({i: list(s.prims.values()) for i, s in by_id.items()}, config)
+    for i in sorted(by_id, key=lambda i: (support[i][0] is not None, i)):
+        state, sup = by_id[i], support[i][0]
+        bottom = min(float(p.corners()[:, 2].min()) for p in state.prims.values())
+        if sup is None and bottom > config.support_distance:
+            run.warn(f"{state.name}: floats {bottom:.3f} m above the floor with nothing under it; "
+                     "left where it was scanned")
+            continue
+        top = 0.0 if sup is None else max(float(p.corners()[:, 2].max()) for p in by_id[sup].prims.values())
+        state.prims = resting_on(state.prims, top)
+    return support
+
+
+class _Obstacles:
+    """The obstacles of an object's joint sweeps: every scan point not on the moving parts, and the
+    surfaces of the other objects' primitives (a scan only has the faces the camera saw; a door must
+    not swing into a neighbour's hidden side), sampled about every ``obstacle_spacing`` metres."""
+
+    def __init__(self, scan: Scan, states: list[ObjectState], run: _Run):
+        rng = np.random.default_rng(run.seed)
+        self.points, self.part_id = scan.points, scan.part_id
+        self.shells = {s.id: np.concatenate([_surface_samples(p, run.config.obstacle_spacing, rng)
+                                             for p in s.prims.values()]) for s in states}
+
+    def for_object(self, object_id: int) -> Callable[[object], np.ndarray]:
+        """obstacles(moving part ids) -> (n, 3) world points, for :func:`recon.joints.estimate_joints`."""
+        others = [v for k, v in self.shells.items() if k != object_id]
+
+        def obstacles_for(part_ids):
+            pts = self.points[~np.isin(self.part_id, list(part_ids))]
+            return np.concatenate([pts] + others) if others else pts
+        return obstacles_for
+
+
+def estimate_object_joints(state: ObjectState, obstacles: _Obstacles, supported_by: int | None,
+                           run: _Run) -> ObjectReconstruction:
+    """The object's joints (type, axis, origin, swept limits), its parts' template and handle shapes,
+    and its frame (bottom centre, x = its front): the finished :class:`ObjectReconstruction`."""
+    config, labels, prims, tree = run.config, state.labels, state.prims, state.tree
+    names = {i: joint_name(state.category, state.id, labels[i], i) for i in labels}
+    joints = estimate_joints(state.category, names, labels, prims, tree, obstacles.for_object(state.id),
+                             config, run.warn)
+    shapes = template_shapes(joints, prims, labels, config) if config.template_shapes else {}
+    shapes.update(posed_handle_shapes(state.handles, prims))
+    parts = tuple(
+        PartFit(i, labels[i], link_name(state.category, state.id, labels[i], i), prims[i],
+                float(state.fits[i].score.total), dict(state.fits[i].candidate_scores), int(state.fits[i].n_points),
+                prims[i].planes(config.cylinder_side_faces), shapes.get(i, ()))
+        for i in labels)
+    T_wo, size = object_frame([prims[tree.root]] + [p for i, p in prims.items() if i != tree.root],
+                              object_front(joints, prims))
+    return ObjectReconstruction(state.id, state.category, state.name, tree.root, parts, state.contacts, joints,
+                                tree.isolated, T_wo, size, supported_by)
+
+
+def room_walls(scan: Scan, run: _Run) -> tuple:
+    """The room's walls fitted to the background points (the points of no object)."""
+    labelled = scan.object_id >= 0
+    centre = scan.points[labelled].mean(axis=0) if labelled.any() else scan.points.mean(axis=0)
+    return walls_from_background(scan.points[~labelled], centre, run.config, run.seed)
 
 
 def _degeneracy(points: np.ndarray, min_thickness: float) -> str:
@@ -275,75 +382,8 @@ def _degeneracy(points: np.ndarray, min_thickness: float) -> str:
     return ""
 
 
-def _clipped_below(prim: Primitive, z: float) -> Primitive:
-    """``prim`` with the part below height ``z`` cut off, when it stands upright (an axis within ~3°
-    of vertical) and reaches below ``z``; otherwise unchanged."""
-    R = prim.T_world_part[:3, :3]
-    k = int(np.argmax(np.abs(R[2, :])))
-    c = prim.corners()
-    lo, hi = float(c[:, 2].min()), float(c[:, 2].max())
-    if lo >= z or hi <= z or abs(R[2, k]) < 0.998 or prim.kind.value == "sphere":
-        return prim
-    if prim.kind.value == "cylinder" and k != 2:
-        return prim
-    size = prim.size.copy()
-    size[k] = (hi - z) / abs(R[2, k])
-    T = prim.T_world_part.copy()
-    T[2, 3] += (z - lo) / 2
-    return Primitive(prim.kind, size, T)
-
-
 def _surface_samples(prim: Primitive, spacing: float, rng: np.random.Generator) -> np.ndarray:
     """About one point per ``spacing``^2 of the primitive's surface, (n, 3) world."""
     area = 2 * (prim.size[0] * prim.size[1] + prim.size[1] * prim.size[2] + prim.size[0] * prim.size[2])
     n = int(np.clip(area / spacing**2, 50, 20000))
     return prim.sample_surface(n, rng)[0]
-
-
-def _part_distances(prims: dict[int, Primitive]) -> dict[tuple[int, int], float]:
-    """{(a, b): distance (m) from part b's corners and centre to part a's surface, min over them}."""
-    out = {}
-    for a, pa in prims.items():
-        for b, pb in prims.items():
-            if a != b:
-                q = np.vstack([pb.corners(), pb.center[None]])
-                out[(a, b)] = float(pa.surface_distance(q).min())
-    return out
-
-
-def template_shapes(joints, prims: dict[int, Primitive], labels: dict[int, str],
-                    config: ReconConfig) -> dict[int, tuple[Primitive, ...]]:
-    """{part_id: template shapes} of an object's drawers (front + box) and of the parents of its
-    drawers/doors (a carcass open at their fronts); other parts keep their primitive (part_shapes.py)."""
-    opens: dict[int, list[tuple[np.ndarray, Primitive]]] = {}
-    out: dict[int, tuple[Primitive, ...]] = {}
-    for j in joints:
-        if j.type is JointType.FIXED or j.parent_part_id is None:
-            continue
-        if j.type is JointType.PRISMATIC:
-            normal = j.axis
-            if labels[j.child_part_id] == "drawer":
-                out[j.child_part_id] = drawer_shapes(prims[j.child_part_id], j.axis, prims[j.parent_part_id], config)
-        else:
-            n = np.cross(j.axis, prims[j.child_part_id].center - j.origin)
-            if np.linalg.norm(n) < 1e-9:
-                continue
-            normal = n / np.linalg.norm(n)
-        opens.setdefault(j.parent_part_id, []).append((normal, prims[j.child_part_id]))
-    for i, fronts in opens.items():
-        if labels[i] in ("body", "frame", "base"):
-            out[i] = carcass_shapes(prims[i], fronts, config)
-    return {i: s for i, s in out.items() if len(s) > 1}
-
-
-def _front(joints, prims: dict[int, Primitive]) -> np.ndarray | None:
-    """The object's front: a drawer's axis, else the outward normal of a door, else None."""
-    for j in joints:
-        if j.type is JointType.PRISMATIC:
-            return j.axis
-    for j in joints:
-        if j.type is JointType.REVOLUTE:
-            n = np.cross(j.axis, prims[j.child_part_id].center - j.origin)
-            if np.linalg.norm(n) > 1e-9:
-                return n / np.linalg.norm(n)
-    return None

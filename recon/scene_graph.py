@@ -14,9 +14,11 @@ import shapely
 from scipy.spatial.transform import Rotation
 
 from recon.config import ReconConfig
+from recon.model import JointEstimate, JointType
 from recon.primitive import Primitive
 
-__all__ = ["footprint", "upright_correction", "support_relations", "proximal_relations", "object_frame"]
+__all__ = ["footprint", "upright_correction", "support_relations", "proximal_relations", "resting_on",
+           "object_frame", "object_front"]
 
 _UP = np.array([0.0, 0.0, 1.0])
 
@@ -92,3 +94,50 @@ def object_frame(prims: list[Primitive], front: np.ndarray | None) -> tuple[np.n
     T[:3, :3] = R
     T[:3, 3] = R @ np.array([(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, lo[2]])
     return T, hi - lo
+
+
+def resting_on(prims: dict[int, Primitive], top: float) -> dict[int, Primitive]:
+    """An object's parts ``prims`` (world frame) resting at height ``top`` (m): parts sunk below it
+    (noise below the floor / a top surface) are cut there instead of lifting the whole object (which
+    would move its fitted drawers and doors), then the object moves vertically so its bottom is ``top``."""
+    bottom = min(float(p.corners()[:, 2].min()) for p in prims.values())
+    if bottom < top:
+        prims = {k: _clipped_below(p, top) for k, p in prims.items()}
+        bottom = min(float(p.corners()[:, 2].min()) for p in prims.values())
+    if abs(top - bottom) > 1e-9:
+        M = np.eye(4)
+        M[2, 3] = top - bottom
+        prims = {k: p.transformed(M) for k, p in prims.items()}
+    return prims
+
+
+def _clipped_below(prim: Primitive, z: float) -> Primitive:
+    """``prim`` with the part below height ``z`` cut off, when it stands upright (an axis within ~3°
+    of vertical) and reaches below ``z``; otherwise unchanged."""
+    R = prim.T_world_part[:3, :3]
+    k = int(np.argmax(np.abs(R[2, :])))
+    c = prim.corners()
+    lo, hi = float(c[:, 2].min()), float(c[:, 2].max())
+    if lo >= z or hi <= z or abs(R[2, k]) < 0.998 or prim.kind.value == "sphere":
+        return prim
+    if prim.kind.value == "cylinder" and k != 2:
+        return prim
+    size = prim.size.copy()
+    size[k] = (hi - z) / abs(R[2, k])
+    T = prim.T_world_part.copy()
+    T[2, 3] += (z - lo) / 2
+    return Primitive(prim.kind, size, T)
+
+
+def object_front(joints: tuple[JointEstimate, ...], prims: dict[int, Primitive]) -> np.ndarray | None:
+    """The object's front, (3,) unit, world: a drawer's axis, else the outward normal of a door (the
+    direction its centre moves as it opens), else None."""
+    for j in joints:
+        if j.type is JointType.PRISMATIC:
+            return j.axis
+    for j in joints:
+        if j.type is JointType.REVOLUTE:
+            n = np.cross(j.axis, prims[j.child_part_id].center - j.origin)
+            if np.linalg.norm(n) > 1e-9:
+                return n / np.linalg.norm(n)
+    return None
