@@ -117,8 +117,8 @@ def main(argv: list[str] | None = None) -> int:
             if args.recon:
                 urdf = out / "recon" / "scene.urdf"
                 if not urdf.exists():
-                    from recon import reconstruct
-                    reconstruct(out / "scan.ply", out / "labels.json", seed=sseed).write(out / "recon")
+                    from recon import reconstruct, write_reconstruction
+                    write_reconstruction(reconstruct(out / "scan.ply", out / "labels.json", seed=sseed), out / "recon")
             for kind, joint, category in _tasks(out / "truth.json", urdf):
                 first_scene = first_scene or (urdf, joint)
                 t = time.perf_counter()

@@ -126,7 +126,7 @@ def run_case(scene: str, seed: int, preset: str, root: Path, samples: int, fresh
         n_parts = sum(len(o.parts) for o in rec.objects)
         case.n_objects = len(rec.objects)
         case.points_per_part = float(sum(p.n_points for o in rec.objects for p in o.parts) / max(n_parts, 1))
-        estimates = [estimate_from_reconstruction(o) for o in rec.objects]
+        estimates = [estimate_from_reconstruction(o, rec.config) for o in rec.objects]
         case.metrics[PART] = evaluate_scene(truth, estimates, cfg)
         true_ids = {o.id for o in truth.objects}
         for e in estimates:

@@ -53,7 +53,7 @@ def run(scene_dir: Path, variant: str, samples: int) -> dict:
     rec = reconstruct(scene_dir / "scan.ply", scene_dir / "labels.json", config=cfg)
     seconds = time.perf_counter() - t0
     truth = read_truth(scene_dir / "truth.json")
-    m = evaluate_scene(truth, [estimate_from_reconstruction(o) for o in rec.objects],
+    m = evaluate_scene(truth, [estimate_from_reconstruction(o, rec.config) for o in rec.objects],
                        MetricsConfig(chamfer_samples=samples))
     js = joint_summary([j for o in m.objects for j in o.joints])
     n_edges = sum(len(o.tree_edges()) for o in rec.objects)

@@ -24,7 +24,7 @@ def _estimates(rec, solids: bool):
 
     out = []
     for o in rec.objects:
-        base = estimate_from_reconstruction(o)
+        base = estimate_from_reconstruction(o, rec.config)
         prims, ids = [], []
         for p in o.parts:
             shapes = p.solids if solids else (p.primitive,)

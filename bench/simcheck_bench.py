@@ -137,7 +137,7 @@ def _reconstruction_rows(scene: str, seed: int, preset: str, d: Path, tasks, cer
     scenes.make_scene(scene, seed=seed, preset=preset, previews=False, out=d)
     try:
         rec = recon.reconstruct(d / "scan.ply", d / "labels.json", seed=seed)
-        rec.write(d / "rec")
+        recon.write_reconstruction(rec, d / "rec")
         est = read_scene_joints(d / "rec" / "scene.urdf")
     except Exception as exc:  # a reconstruction failure is a benchmark result, not a crash
         return [ReconRow(seed, preset, task, cat, obj, f"reconstruction failed: {type(exc).__name__}: {exc}")

@@ -24,9 +24,9 @@ Pipeline (one module per product)::
 
 Python API::
 
-    from recon import reconstruct, ReconConfig
+    from recon import reconstruct, write_reconstruction, ReconConfig
     rec = reconstruct("scan.ply", "labels.json", config=ReconConfig(), level_floor=False, seed=0)
-    rec.write("out/")                 # scene.urdf + graph.json, atomically
+    write_reconstruction(rec, "out/") # scene.urdf + graph.json, atomically
     for obj in rec.objects:           # ObjectReconstruction
         obj.id, obj.category, obj.name, obj.root_part_id
         for part in obj.parts:        # PartFit
@@ -39,13 +39,13 @@ Python API::
                                       #   or (part.primitive,)
         obj.joints                    # JointEstimate: name, type, parent_part_id, child_part_id,
                                       #   axis (3,), origin (3,), lower, upper, contact_score
-        obj.contact_edges_undirected()   # {(a, b): score} every Eq. 1 contact (for mAP);
-                                      #   score = Cont x template prior (weighted=False: raw Cont)
+    recon.part_tree.contact_scores(obj, rec.config)   # {(a, b): score} every Eq. 1 contact (for
+                                      #   mAP); score = Cont x template prior (weighted=False: raw Cont)
         obj.tree_edges()              # ((parent, child), ...) the estimated part tree
     rec.graph.supports, rec.graph.proximal, rec.warnings
     rec.walls                         # Wall: name ("wall0"), size (thickness, length, height), T_world_wall
 
-    read_graph_json("graph.json") -> Reconstruction     # the inverse of write (same model)
+    read_graph_json("graph.json") -> Reconstruction     # the inverse of write_reconstruction (same model)
 
 CLI: ``recon build SCAN --labels LABELS --out DIR [--level-floor] [--seed N] [-v|-q]``.
 """
@@ -58,6 +58,7 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "pipeline": ["reconstruct"],
     "scan": ["read_scan", "Scan"],
     "graph_json": ["read_graph_json"],
+    "output": ["write_reconstruction"],
     "config": ["ReconConfig"],
     "errors": ["ReconError", "ScanError", "ReconstructionError"],
     "primitive": ["Primitive", "PrimitiveKind", "SurfacePlane"],

@@ -45,12 +45,15 @@ def main(argv: list[str] | None = None) -> int:
             print(f"[{done}/{total}] {msg}", file=sys.stderr, flush=True)
 
     try:
+        from recon.config import ReconConfig
+        from recon.output import write_reconstruction
         from recon.pipeline import reconstruct_scan
         from recon.scan import read_scan
 
-        scan = read_scan(args.scan, args.labels)
-        rec = reconstruct_scan(scan, level_floor=args.level_floor, seed=args.seed, progress=progress)
-        paths = rec.write(args.out, preview_scan=None if args.no_preview else scan)
+        config = ReconConfig()
+        scan = read_scan(args.scan, args.labels, config)
+        rec = reconstruct_scan(scan, config=config, level_floor=args.level_floor, seed=args.seed, progress=progress)
+        paths = write_reconstruction(rec, args.out, preview_scan=None if args.no_preview else scan)
     except ScanError as exc:
         print(f"recon: error: {exc}", file=sys.stderr)
         return exit_code([Outcome.UNUSABLE])

@@ -5,7 +5,7 @@
     JointEstimate        one joint of the part tree (fixed / prismatic / revolute), world frame
     ObjectReconstruction one object: parts, contact edges, joints (the part tree), pose, support
     SceneGraph           inter-object supporting and proximal relations
-    Reconstruction       the whole scene; ``.write(out_dir)`` writes scene.urdf + graph.json
+    Reconstruction       the whole scene (written by :func:`recon.output.write_reconstruction`)
 
 Frames: ``T_a_b`` is the (4, 4) pose of b in a; everything here is in the world frame (z up, metres).
 """
@@ -14,7 +14,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import Enum
-from pathlib import Path
 
 import numpy as np
 
@@ -23,10 +22,6 @@ from recon.primitive import Primitive, SurfacePlane
 
 __all__ = ["JointType", "PartFit", "ContactEdge", "JointEstimate", "ObjectReconstruction",
            "SceneGraph", "Reconstruction"]
-
-
-UNCONTACTED_TREE_EDGE_SCORE = 0.05
-"""Score given (for the mAP ranking) to a tree edge the part tree made without an Eq. 1 contact."""
 
 
 class JointType(str, Enum):
@@ -166,36 +161,6 @@ class ObjectReconstruction:
         """{part_id: fitted primitive} (for metrics: Chamfer / IoU)."""
         return {p.part_id: p.primitive for p in self.parts}
 
-    def contact_edges_undirected(self, weighted: bool = True) -> dict[tuple[int, int], float]:
-        """{(min id, max id): score} of every estimated contact (the scored edge list for the
-        kinematic-structure mAP).
-
-        The score of a pair is its best Eq. 1 Cont over both directions. ``weighted`` (default)
-        multiplies it by the template prior when the templates expect no contact between the two labels
-        (drawer–drawer, body–handle, leg–headboard: ``foreign_parent_penalty``; a bed's
-        headboard–mattress is expected, :func:`recon.templates.expected_contact`), and also lists the
-        tree edges the part tree made without an Eq. 1 contact (a parent the template expects, close
-        by) with score ``UNCONTACTED_TREE_EDGE_SCORE``. ``weighted=False``: raw Eq. 1 contacts only.
-        """
-        from recon.config import ReconConfig
-        from recon.templates import expected_contact
-
-        penalty = ReconConfig().foreign_parent_penalty
-        labels = {p.part_id: p.label for p in self.parts}
-
-        out: dict[tuple[int, int], float] = {}
-        for e in self.contacts:
-            key = (min(e.parent_part_id, e.child_part_id), max(e.parent_part_id, e.child_part_id))
-            out[key] = max(out.get(key, 0.0), e.score)
-        if not weighted:
-            return out
-        for (a, b), s in out.items():
-            if not expected_contact(self.category, labels.get(a, ""), labels.get(b, "")):
-                out[(a, b)] = s * penalty
-        for p, c in self.tree_edges():
-            out.setdefault((min(p, c), max(p, c)), UNCONTACTED_TREE_EDGE_SCORE)
-        return out
-
     def tree_edges(self) -> tuple[tuple[int, int], ...]:
         """(parent_part_id, child_part_id) of every non-root joint (the estimated part tree)."""
         return tuple((j.parent_part_id, j.child_part_id) for j in self.joints
@@ -228,8 +193,8 @@ class Reconstruction:
 
     objects: tuple[ObjectReconstruction, ...]
     graph: SceneGraph
-    warnings: tuple[str, ...] = ()
-    config: ReconConfig = field(default_factory=ReconConfig)
+    warnings: tuple[str, ...]
+    config: ReconConfig
     seed: int = 0
     timings: dict = field(default_factory=dict)
     walls: tuple = ()
@@ -242,10 +207,3 @@ class Reconstruction:
 
     def joints(self) -> tuple[JointEstimate, ...]:
         return tuple(j for o in self.objects for j in o.joints)
-
-    def write(self, out_dir: str | Path, *, preview_scan=None) -> dict[str, Path]:
-        """Write ``scene.urdf`` and ``graph.json`` (and ``preview.png`` when ``preview_scan`` — the
-        :class:`recon.scan.Scan` — is given) into ``out_dir``, atomically. Returns {name: path}."""
-        from recon.output import write_reconstruction
-
-        return write_reconstruction(self, out_dir, preview_scan=preview_scan)

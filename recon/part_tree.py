@@ -15,11 +15,14 @@ import networkx as nx
 import numpy as np
 
 from recon.config import ReconConfig
-from recon.model import ContactEdge
+from recon.model import ContactEdge, ObjectReconstruction
 from recon.primitive import Primitive
-from recon.templates import ROOT_LABELS, template_for
+from recon.templates import ROOT_LABELS, expected_contact, template_for
 
-__all__ = ["PartTree", "choose_root", "part_distances", "part_tree"]
+__all__ = ["PartTree", "UNCONTACTED_TREE_EDGE_SCORE", "choose_root", "contact_scores", "part_distances", "part_tree"]
+
+UNCONTACTED_TREE_EDGE_SCORE = 0.05
+"""Score given (for the mAP ranking) to a tree edge the part tree made without an Eq. 1 contact."""
 
 
 @dataclass(frozen=True)
@@ -121,3 +124,30 @@ def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
         if edges[c] is None:
             isolated.append(c)
     return PartTree(root, parent, edges, tuple(sorted(isolated)))
+
+
+def contact_scores(obj: ObjectReconstruction, config: ReconConfig, weighted: bool = True
+                   ) -> dict[tuple[int, int], float]:
+    """{(min id, max id): score} of every estimated contact of ``obj`` (the scored edge list for the
+    kinematic-structure mAP).
+
+    The score of a pair is its best Eq. 1 Cont over both directions. ``weighted`` (default)
+    multiplies it by the template prior ``config.foreign_parent_penalty`` when the templates expect no
+    contact between the two labels (drawer–drawer, body–handle, leg–headboard; a bed's
+    headboard–mattress is expected, :func:`recon.templates.expected_contact`), and also lists the tree
+    edges the part tree made without an Eq. 1 contact (a parent the template expects, close by) with
+    score ``UNCONTACTED_TREE_EDGE_SCORE``. ``weighted=False``: raw Eq. 1 contacts only.
+    """
+    labels = {p.part_id: p.label for p in obj.parts}
+    out: dict[tuple[int, int], float] = {}
+    for e in obj.contacts:
+        key = (min(e.parent_part_id, e.child_part_id), max(e.parent_part_id, e.child_part_id))
+        out[key] = max(out.get(key, 0.0), e.score)
+    if not weighted:
+        return out
+    for (a, b), s in out.items():
+        if not expected_contact(obj.category, labels.get(a, ""), labels.get(b, "")):
+            out[(a, b)] = s * config.foreign_parent_penalty
+    for p, c in obj.tree_edges():
+        out.setdefault((min(p, c), max(p, c)), UNCONTACTED_TREE_EDGE_SCORE)
+    return out

@@ -170,8 +170,9 @@ def _stage_scene(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
 
 def _stage_reconstruct(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
     reconstruct = _api("recon", "reconstruct")
+    write_reconstruction = _api("recon", "write_reconstruction")
     rec = reconstruct(lay.scan_ply, lay.labels_json, seed=cfg.seed)
-    rec.write(lay.root)
+    write_reconstruction(rec, lay.root)
     state["reconstruction"] = rec
     n_joints = sum(1 for o in rec.objects for j in o.joints if str(getattr(j.type, "value", j.type)) != "fixed")
     n_warn = len(getattr(rec, "warnings", ()))
@@ -220,7 +221,8 @@ def _stage_metrics(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
     joint_summary = _api("recon.metrics", "joint_summary")
     metrics_config = _api("recon.metrics", "MetricsConfig")
     truth = read_truth(lay.truth_json)
-    estimates = [estimate_from_reconstruction(o) for o in state["reconstruction"].objects]
+    rec = state["reconstruction"]
+    estimates = [estimate_from_reconstruction(o, rec.config) for o in rec.objects]
     scene_metrics = evaluate_scene(truth, estimates, metrics_config(seed=cfg.seed))
     summary = joint_summary([c for o in scene_metrics.objects for c in o.joints])
     doc = metrics_doc(scene_metrics, summary)

@@ -11,7 +11,7 @@ Joints (matched by child part id):
                      limit errors
 Scene:
     read_truth("truth.json") -> TruthScene
-    estimate_from_reconstruction(obj) -> ObjectEstimate      (the baseline builds ObjectEstimate too)
+    estimate_from_reconstruction(obj, rec.config) -> ObjectEstimate     (the baseline builds ObjectEstimate too)
     evaluate_scene(truth, estimates, MetricsConfig()) -> SceneMetrics (per object; .chamfer, .iou means)
     joint_summary(comparisons) -> JointSummary (type / parent accuracy, median axis / hinge / limit errors)
 Diagnostics (not in the paper):

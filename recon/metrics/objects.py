@@ -14,6 +14,7 @@ from typing import Mapping
 
 import numpy as np
 
+from recon.config import ReconConfig
 from recon.metrics.errors import EstimateError
 from recon.model import JointEstimate, ObjectReconstruction
 from recon.primitive import Primitive
@@ -71,11 +72,15 @@ class ObjectEstimate:
         object.__setattr__(self, "contact_scores", MappingProxyType(scores))
 
 
-def estimate_from_reconstruction(obj: ObjectReconstruction, seconds: float = float("nan")) -> ObjectEstimate:
+def estimate_from_reconstruction(obj: ObjectReconstruction, config: ReconConfig,
+                                 seconds: float = float("nan")) -> ObjectEstimate:
     """The metrics' view of one object of :func:`recon.reconstruct`: the geometry it writes to scene.urdf
     (each part's ``solids``: its articulated-template shapes, else its fitted primitive), its joints (the
     world joint of the root is kept; it matches no true joint) and every Eq. 1 contact with its score
-    (not only the tree edges: the AP ranks all of them)."""
+    (not only the tree edges: the AP ranks all of them), scored by :func:`recon.part_tree.contact_scores`
+    with ``config``, the reconstruction's config (``rec.config``)."""
+    from recon.part_tree import contact_scores
+
     solids = [(p.part_id, s) for p in obj.parts for s in p.solids]
     return ObjectEstimate(obj.id, obj.category, tuple(s for _, s in solids), tuple(obj.joints),
-                          obj.contact_edges_undirected(), seconds, tuple(i for i, _ in solids))
+                          contact_scores(obj, config), seconds, tuple(i for i, _ in solids))

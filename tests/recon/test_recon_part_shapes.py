@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from recon.config import ReconConfig
+from recon.output import write_reconstruction
 from recon.part_shapes import carcass_shapes, drawer_shapes
 from recon.primitive import Primitive
 
@@ -75,7 +76,7 @@ def test_reconstructed_drawer_box_slides_free_in_its_carcass_in_pybullet(kitchen
     drawer = next(p for p in cab.parts if p.label == "drawer")
     body = cab.part(cab.root_part_id)
     assert len(drawer.solids) == 5 and len(body.solids) > 5      # the templates are in the URDF
-    kitchen_rec.write(tmp_path)
+    write_reconstruction(kitchen_rec, tmp_path)
     cid = pb.connect(pb.DIRECT)
     try:
         uid = pb.loadURDF(str(tmp_path / "scene.urdf"), useFixedBase=True, physicsClientId=cid)

@@ -7,6 +7,7 @@ from recon.completion import complete_missing_legs
 from recon.config import ReconConfig
 from recon.fitting import denoised_box
 from recon.model import ContactEdge, JointEstimate, JointType, ObjectReconstruction, PartFit
+from recon.part_tree import contact_scores
 from recon.primitive import Primitive
 from recon.scan import PartPoints
 from recon.templates import expected_contact
@@ -42,7 +43,7 @@ def _bed(contacts):
 def test_bed_mattress_against_headboard_outranks_a_leg_touching_the_headboard():
     # measured on bedroom seed 0 (clean): both raw Cont ~1.0; the true edge must not tie the false one
     bed = _bed([(1, 2, 1.0), (1, 6, 1.0), (1, 7, 1.0), (6, 7, 1.0), (6, 2, 0.996)])
-    s = bed.contact_edges_undirected()
+    s = contact_scores(bed, CFG)
     assert s[(6, 7)] == pytest.approx(1.0)
     assert s[(2, 6)] == pytest.approx(0.996 * CFG.foreign_parent_penalty)
     assert s[(6, 7)] > s[(2, 6)]

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from recon.config import ReconConfig
+from recon.output import write_reconstruction
 from recon.walls import walls_from_background
 
 CFG = ReconConfig()
@@ -50,7 +51,7 @@ def test_walls_are_fixed_boxes_on_world_in_the_urdf_and_round_trip_through_graph
 
     walls = walls_from_background(_room(), np.zeros(3), CFG, seed=0)
     rec = dataclasses.replace(kitchen_rec, walls=walls)
-    rec.write(tmp_path)
+    write_reconstruction(rec, tmp_path)
     back = read_graph_json(tmp_path / "graph.json")
     assert len(back.walls) == 2 and all(a.isclose(b) for a, b in zip(back.walls, walls))
     import pinocchio
