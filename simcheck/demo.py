@@ -3,7 +3,7 @@
 Stages (each logged on stderr with its time, each recorded in ``OUT/demo.json``)::
 
     scene        scenes.make_scene("kitchen", seed, preset="realistic")  -> OUT/truth/{truth.urdf, truth.json, scan.*}
-    reconstruct  recon.reconstruct(scan, labels) .write(OUT)              -> OUT/scene.urdf, OUT/graph.json
+    reconstruct  recon.write_reconstruction(recon.reconstruct(scan, labels), OUT) -> OUT/scene.urdf, graph.json
     metrics      recon.metrics against truth.json                          -> OUT/metrics.json
     tasks        open-drawer / open-door tasks picked from the truth, present in the reconstruction
     certify      simcheck.certify(scene.urdf, tasks, against=truth.urdf)  -> OUT/certificate.json, OUT/rollouts/
