@@ -7,9 +7,31 @@ The symbols of the paper (Sections II–III of Zhang et al., part-level scene re
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
-__all__ = ["ReconConfig"]
+__all__ = ["ClearanceConfig", "ReconConfig"]
+
+
+@dataclass(frozen=True)
+class ClearanceConfig:
+    """How the clearance stage (clearance.py) keeps the scene's links apart at q = 0. Lengths in metres."""
+
+    enabled: bool = True
+    """Cut overlapping shapes apart (off only to measure what the stage does)."""
+    moving_gap: float = 0.0
+    """Gap left between shapes that move relative to each other (a door and its carcass). The URDF's
+    collision shapes of moving parts are also shrunk by ``ReconConfig.collision_clearance``; touching
+    solids therefore start that far apart in an engine."""
+    tolerance: float = 1e-6
+    """Overlaps up to this are left alone (rounding of the written file)."""
+    report_overlap: float = 5e-4
+    """A pair still overlapping by more than this after the stage is reported with a warning."""
+    min_keep_fraction: float = 0.25
+    """A cut never leaves less than this fraction of the shape's extent along the cut axis."""
+    wall_max_shift: float = 0.2
+    """A fitted wall moves back (out of the room) at most this far to clear an object."""
+    max_passes: int = 4
+    """Passes over the overlapping pairs (a cut can only shrink a shape, so few are needed)."""
 
 
 @dataclass(frozen=True)
@@ -281,3 +303,7 @@ class ReconConfig:
     """RANSAC inlier distance (m) of the floor plane."""
     floor_candidates: int = 4
     """Largest planes tried as the floor."""
+
+    # --- clearance between links at q = 0 (clearance.py) ---
+    clearance: ClearanceConfig = field(default_factory=ClearanceConfig)
+    """The clearance stage's own group."""

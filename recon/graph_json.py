@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from recon.config import ReconConfig
+from recon.config import ClearanceConfig, ReconConfig
 from recon.errors import ScanError
 from recon.model import (ContactEdge, JointEstimate, ObjectReconstruction, PartFit, Reconstruction,
                          SceneGraph)
@@ -101,6 +101,8 @@ def reconstruction_from_dict(doc: dict, source: str = "<dict>") -> Reconstructio
         cfg = {k: v for k, v in doc.get("config", {}).items() if k in fields}
         if "candidates" in cfg:
             cfg["candidates"] = tuple(cfg["candidates"])
+        if isinstance(cfg.get("clearance"), dict):
+            cfg["clearance"] = ClearanceConfig(**cfg["clearance"])
         config = ReconConfig(**cfg)
         objects = []
         for o in doc["objects"]:

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from recon.clearance import cleared_scene
 from recon.completion import (complete_missing_legs, complete_mounted_parts, complete_reaching_parts,
                               complete_vertical_parts)
 from recon.config import ReconConfig
@@ -180,6 +181,7 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
         t0 = time.perf_counter()
         walls = room_walls(scan, run)
         run.timings["walls"] = time.perf_counter() - t0
+    objects, walls = cleared_scene(objects, walls, config.clearance, run.warn)
     run.timings["total"] = time.perf_counter() - t_start
     if progress:
         progress("done", n_obj, n_obj)

@@ -14,6 +14,12 @@ volume; inertia is the closed form of the primitive (of each shape, combined abo
 with the parallel-axis theorem), in the link frame. Parts that move (drawers, doors and what
 hangs from them) get collision shapes shrunk by ``collision_clearance`` so they do not start in
 contact with their body or siblings.
+
+Every visual carries a material coloured by its part label (``LABEL_RGBA`` of scenes' truth.urdf;
+walls ``wall``). Numbers are written rounded so that the same reconstruction gives the same bytes:
+lengths and angles (origins, sizes, axes, limits) to ``LENGTH_DECIMALS`` decimals, masses and
+inertias to ``SIGNIFICANT_DIGITS`` significant digits (an inertia term relative to the largest
+term of its tensor, so round-off terms near zero are written as 0).
 """
 
 from __future__ import annotations
@@ -24,8 +30,16 @@ import yourdfpy
 from recon.model import JointType, Reconstruction
 from recon.primitive import Primitive, PrimitiveKind
 from scenes.naming import WORLD_LINK
+from scenes.truth_urdf import LABEL_RGBA
 
-__all__ = ["urdf_robot", "urdf_string", "link_frames", "compound_inertial"]
+__all__ = ["urdf_robot", "urdf_string", "link_frames", "compound_inertial", "label_rgba",
+           "LENGTH_DECIMALS", "SIGNIFICANT_DIGITS"]
+
+LENGTH_DECIMALS = 6
+"""Lengths (m) and angles (rad) in scene.urdf are rounded to 1e-6."""
+SIGNIFICANT_DIGITS = 9
+"""Masses and inertias in scene.urdf keep this many significant digits."""
+_DEFAULT_RGBA = (0.6, 0.6, 0.6, 1.0)
 
 
 WALL_DENSITY = 1500.0
@@ -36,6 +50,15 @@ def _translation(p: np.ndarray) -> np.ndarray:
     T = np.eye(4)
     T[:3, 3] = p
     return T
+
+
+def label_rgba(label: str) -> tuple[float, float, float, float]:
+    """(r, g, b, a) in 0..1 of a part label (grey for a label without a colour)."""
+    return tuple(float(x) for x in LABEL_RGBA.get(label, _DEFAULT_RGBA))
+
+
+def _material(label: str) -> yourdfpy.Material:
+    return yourdfpy.Material(name=f"label_{label}", color=yourdfpy.Color(rgba=np.array(label_rgba(label))))
 
 
 def _geometry(prim: Primitive) -> yourdfpy.Geometry:
@@ -107,7 +130,7 @@ def urdf_robot(rec: Reconstruction, name: str = "scene") -> yourdfpy.Robot:
                 suffix = "" if len(solids) == 1 else str(k)
                 coll = prim.shrunk(cfg.collision_clearance) if part.part_id in moving else prim
                 visuals.append(yourdfpy.Visual(name=f"{part.link}_visual{suffix}", origin=T_lp,
-                                               geometry=_geometry(prim)))
+                                               geometry=_geometry(prim), material=_material(part.label)))
                 collisions.append(yourdfpy.Collision(name=f"{part.link}_collision{suffix}", origin=T_lp,
                                                      geometry=_geometry(coll)))
             links.append(yourdfpy.Link(
@@ -136,7 +159,8 @@ def urdf_robot(rec: Reconstruction, name: str = "scene") -> yourdfpy.Robot:
         mass = WALL_DENSITY * prim.volume
         links.append(yourdfpy.Link(
             name=wall.name, inertial=yourdfpy.Inertial(origin=np.eye(4), mass=float(mass), inertia=prim.inertia(mass)),
-            visuals=[yourdfpy.Visual(name=f"{wall.name}_visual", origin=np.eye(4), geometry=_geometry(prim))],
+            visuals=[yourdfpy.Visual(name=f"{wall.name}_visual", origin=np.eye(4), geometry=_geometry(prim),
+                                     material=_material("wall"))],
             collisions=[yourdfpy.Collision(name=f"{wall.name}_collision", origin=np.eye(4), geometry=_geometry(prim))]))
         joints.append(yourdfpy.Joint(name=f"{wall.name}_joint", type="fixed", parent=WORLD_LINK, child=wall.name,
                                      origin=wall.T_world_wall, dynamics=yourdfpy.Dynamics(damping=0.0, friction=0.0)))
@@ -148,6 +172,42 @@ def urdf_string(rec: Reconstruction, name: str = "scene") -> str:
     from lxml import etree
 
     urdf = yourdfpy.URDF(robot=urdf_robot(rec, name), build_scene_graph=False, load_meshes=False)
+    xml = urdf.write_xml()
+    _round_numbers(xml.getroot())
     # pretty-printed: PyBullet's tinyxml2 fails to parse yourdfpy's one-line output of a large scene
-    return etree.tostring(urdf.write_xml(), xml_declaration=True, encoding="UTF-8",
-                          pretty_print=True).decode()
+    return etree.tostring(xml, xml_declaration=True, encoding="UTF-8", pretty_print=True).decode()
+
+
+_LENGTH_ATTRIBUTES = {("origin", "xyz"), ("origin", "rpy"), ("box", "size"), ("cylinder", "radius"),
+                      ("cylinder", "length"), ("sphere", "radius"), ("axis", "xyz"), ("limit", "lower"),
+                      ("limit", "upper")}
+_INERTIA_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+
+
+def _length(x: float) -> str:
+    text = f"{round(float(x), LENGTH_DECIMALS) + 0.0:.{LENGTH_DECIMALS}f}".rstrip("0").rstrip(".")
+    return "0" if text in ("", "-0") else text
+
+
+def _significant(x: float, scale: float | None = None) -> str:
+    """``x`` to SIGNIFICANT_DIGITS digits (of ``scale`` when given: terms far below it become 0)."""
+    x = float(x)
+    if scale is not None and scale > 0:
+        step = 10.0 ** (np.floor(np.log10(scale)) - (SIGNIFICANT_DIGITS - 1))
+        x = round(x / step) * step
+    return f"{x + 0.0:.{SIGNIFICANT_DIGITS}g}"
+
+
+def _round_numbers(root) -> None:
+    """Rewrite the numbers of a URDF element tree in place (see the module docstring)."""
+    for el in root.iter():
+        for key in list(el.attrib):
+            if (el.tag, key) in _LENGTH_ATTRIBUTES:
+                el.set(key, " ".join(_length(float(v)) for v in el.get(key).split()))
+            elif el.tag == "mass" and key == "value":
+                el.set(key, _significant(float(el.get(key))))
+        if el.tag == "inertia":
+            vals = [float(el.get(k, 0.0)) for k in _INERTIA_KEYS]
+            scale = max(abs(v) for v in vals)
+            for k, v in zip(_INERTIA_KEYS, vals):
+                el.set(k, _significant(v, scale))

@@ -1,0 +1,93 @@
+"""recon.clearance: the separating-axis distance against closed forms, and the cuts that clear a pair."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from recon.clearance import cleared_scene, separation
+from recon.config import ClearanceConfig
+from recon.model import JointEstimate, ObjectReconstruction, PartFit
+from recon.primitive import Primitive, PrimitiveKind
+from recon.walls import Wall
+
+
+def _box(lo, hi, yaw=0.0) -> Primitive:
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    T = np.eye(4)
+    c, s = np.cos(yaw), np.sin(yaw)
+    T[:3, :3] = [[c, -s, 0], [s, c, 0], [0, 0, 1]]
+    T[:3, 3] = (lo + hi) / 2
+    return Primitive(PrimitiveKind.BOX, hi - lo, T)
+
+
+def test_separation_of_axis_aligned_boxes_is_their_gap_or_minus_their_depth():
+    a = _box([0, 0, 0], [1, 1, 1])
+    assert separation(a, _box([1.1, 0, 0], [2, 1, 1])) == pytest.approx(0.1, abs=1e-12)
+    assert separation(a, _box([0.98, 0.2, 0.2], [2, 0.8, 0.8])) == pytest.approx(-0.02, abs=1e-12)
+    assert separation(a, _box([1, 0, 0], [2, 1, 1])) == pytest.approx(0.0, abs=1e-12)
+
+
+def test_separation_of_a_box_turned_45_degrees_uses_its_corner():
+    a = _box([-0.5, -0.5, 0], [0.5, 0.5, 1])
+    b = _box([-0.5, -0.5, 0], [0.5, 0.5, 1], yaw=np.pi / 4)
+    b = b.transformed(np.array([[1, 0, 0, 1.0 + 0.05], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]]))
+    # b's corner reaches x = 1.05 - sqrt(0.5) = 0.343 < 0.5: 0.157 deep along x
+    assert separation(a, b) == pytest.approx(1.05 - np.sqrt(0.5) - 0.5, abs=1e-9)
+
+
+def _part(pid, label, prim, link=None):
+    return PartFit(pid, label, link or f"cab1_{label}{pid}", prim, 0.0, {}, 10, ())
+
+
+def _cabinet(door_back_y: float):
+    """A body (solid box 0..0.6 in y, its front at y = 0) and a door in front of it whose back face is at
+    ``door_back_y`` (negative: the door sinks into the body), hinged on a vertical axis."""
+    body = _box([0, 0, 0], [0.8, 0.6, 0.9])
+    door = _box([0.0, door_back_y - 0.018, 0.0], [0.8, door_back_y, 0.9])
+    joints = (JointEstimate("cab1_body1_joint", "fixed", None, 1, np.zeros(3), body.center),
+              JointEstimate("cab1_door2_joint", "revolute", 1, 2, [0, 0, 1.0], [0.0, door_back_y, 0.45], 0, 1.5))
+    return ObjectReconstruction(1, "cabinet", "cab1", 1, (_part(1, "body", body), _part(2, "door", door)), (),
+                                joints, (), np.eye(4), np.ones(3))
+
+
+def test_a_door_sunk_into_its_body_is_thinned_from_behind_and_keeps_its_outer_face():
+    obj = _cabinet(door_back_y=0.008)          # 8 mm inside the body's front y = 0
+    (new,), walls = cleared_scene([obj], (), ClearanceConfig())
+    door = new.part(2).solids[0]
+    lo, hi = door.corners().min(axis=0), door.corners().max(axis=0)
+    assert hi[1] == pytest.approx(0.0, abs=1e-9)              # its back now on the body's front
+    assert lo[1] == pytest.approx(0.008 - 0.018, abs=1e-9)    # its outer face where it was seen
+    assert new.part(2).primitive.isclose(obj.part(2).primitive)    # the fitted primitive is kept (metrics)
+    assert new.part(1).solids[0].isclose(obj.part(1).solids[0])   # the static body is not cut
+    assert separation(new.part(1).solids[0], door) >= -1e-9
+
+
+def test_a_moving_gap_is_kept_between_parts_that_move_relative_to_each_other():
+    obj = _cabinet(door_back_y=0.004)
+    (new,), _ = cleared_scene([obj], (), ClearanceConfig(moving_gap=0.002))
+    assert separation(new.part(1).solids[0], new.part(2).solids[0]) == pytest.approx(0.002, abs=1e-9)
+
+
+def test_a_wall_overlapping_a_body_moves_back_out_of_the_room():
+    obj = _cabinet(door_back_y=-0.001)
+    T = np.eye(4)
+    T[:3, 3] = [0.4, 0.6 - 0.03 + 0.05, 1.2]            # room side of the wall 30 mm inside the body's back
+    T[:3, :3] = [[0, 1, 0], [-1, 0, 0], [0, 0, 1]]      # x (normal into the room) = -y
+    wall = Wall("wall0", [0.1, 4.0, 2.4], T)
+    _, (moved,) = cleared_scene([obj], (wall,), ClearanceConfig())
+    assert moved.T_world_wall[1, 3] - T[1, 3] == pytest.approx(0.03, abs=1e-9)
+    assert np.allclose(moved.size, wall.size)
+
+
+def test_a_pair_that_no_cut_can_clear_is_reported_by_name():
+    obj = _cabinet(door_back_y=0.3)            # the door is deep inside the body: neither can be cut enough
+    msgs = []
+    cleared_scene([obj], (), ClearanceConfig(min_keep_fraction=0.9), msgs.append)
+    assert msgs and "cab1_body1" in msgs[0] and "cab1_door2" in msgs[0]
+
+
+def test_disabled_stage_returns_the_scene_unchanged():
+    obj = _cabinet(door_back_y=0.008)
+    (new,), _ = cleared_scene([obj], (), ClearanceConfig(enabled=False))
+    assert new is obj

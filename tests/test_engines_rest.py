@@ -1,0 +1,203 @@
+"""The scene rests in every engine: a reconstructed kitchen's plain ``scene.urdf`` (clean and realistic
+scan) and the truth's ``truth.urdf``, loaded as a user would (no robot, no collision filter of ours),
+keep every movable joint still under 2 s of gravity in MuJoCo, in PyBullet with self-collision on and
+in Drake (when installed); no two links overlap at q = 0; and the same input gives the same bytes.
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+REST_SECONDS = 2.0
+MAX_SLIDE = 1e-3      # m a prismatic joint may move at rest
+MAX_HINGE = 0.01      # rad a revolute joint may move at rest
+MAX_OVERLAP = 5e-4    # m two links may interpenetrate at q = 0
+
+
+@pytest.fixture(scope="module", params=["clean", "realistic"])
+def kitchen(request, tmp_path_factory):
+    """{"scene.urdf", "truth.urdf", "scan", "labels", "preset"} of kitchen seed 0 reconstructed from ``preset``."""
+    import scenes
+    from recon import reconstruct
+
+    out = tmp_path_factory.mktemp(f"kitchen_{request.param}")
+    scenes.make_scene("kitchen", seed=0, preset=request.param, out=out / "truth", previews=False)
+    rec = reconstruct(out / "truth" / "scan.npz", out / "truth" / "labels.json", seed=0)
+    paths = rec.write(out / "recon")
+    return {"scene.urdf": paths["scene.urdf"], "truth.urdf": out / "truth" / "truth.urdf",
+            "scan": out / "truth" / "scan.npz", "labels": out / "truth" / "labels.json", "preset": request.param}
+
+
+@pytest.fixture(params=["scene.urdf", "truth.urdf"])
+def urdf(request, kitchen) -> Path:
+    if request.param == "truth.urdf" and kitchen["preset"] != "clean":
+        pytest.skip("the truth is the same for both scans")
+    return kitchen[request.param]
+
+
+def _link_shapes(path: Path) -> dict[str, list]:
+    """{link: [(coal shape, coal.Transform3s world pose), ...]} of the URDF's collision shapes at q = 0."""
+    import coal
+    import yourdfpy
+
+    u = yourdfpy.URDF.load(str(path), build_scene_graph=True, load_meshes=False, build_collision_scene_graph=False)
+    out = {}
+    for name, link in u.link_map.items():
+        T_wl = u.get_transform(name, u.base_link)
+        shapes = []
+        for c in link.collisions:
+            g = c.geometry
+            T = T_wl @ (c.origin if c.origin is not None else np.eye(4))
+            if g.box is not None:
+                s = coal.Box(*g.box.size)
+            elif g.cylinder is not None:
+                s = coal.Cylinder(g.cylinder.radius, g.cylinder.length)
+            else:
+                s = coal.Sphere(g.sphere.radius)
+            shapes.append((s, coal.Transform3s(T[:3, :3].copy(), T[:3, 3].copy())))
+        out[name] = shapes
+    return out
+
+
+def test_no_two_links_overlap_at_rest(urdf):
+    """Signed distance (coal, an engine independent of recon's own test) between every pair of links."""
+    import coal
+
+    shapes = _link_shapes(urdf)
+    overlaps = []
+    for a, b in itertools.combinations(shapes, 2):
+        for (sa, ta), (sb, tb) in itertools.product(shapes[a], shapes[b]):
+            d = coal.distance(sa, ta, sb, tb, coal.DistanceRequest(), coal.DistanceResult())
+            if d < -MAX_OVERLAP:
+                overlaps.append((a, b, round(d * 1e3, 2)))
+    assert not overlaps, f"{urdf}: links overlapping at q = 0 (mm): {overlaps}"
+
+
+def _assert_still(moved: dict[str, tuple[str, float]], what: str):
+    bad = {n: round(v, 5) for n, (kind, v) in moved.items()
+           if abs(v) > (MAX_SLIDE if kind == "slide" else MAX_HINGE)}
+    assert not bad, f"{what}: joints moved at rest (m or rad): {bad}"
+
+
+def mujoco_rest(path: Path, seconds: float = REST_SECONDS) -> dict[str, tuple[str, float]]:
+    """{joint: ("slide" | "hinge", displacement)} after ``seconds`` of gravity from q = 0 in MuJoCo."""
+    import mujoco
+
+    m = mujoco.MjModel.from_xml_path(str(path))
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    q0 = d.qpos.copy()
+    for _ in range(int(round(seconds / m.opt.timestep))):
+        mujoco.mj_step(m, d)
+    out = {}
+    for j in range(m.njnt):
+        kind = int(m.jnt_type[j])
+        if kind in (int(mujoco.mjtJoint.mjJNT_SLIDE), int(mujoco.mjtJoint.mjJNT_HINGE)):
+            a = m.jnt_qposadr[j]
+            out[mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j)] = (
+                "slide" if kind == int(mujoco.mjtJoint.mjJNT_SLIDE) else "hinge", float(d.qpos[a] - q0[a]))
+    return out
+
+
+def pybullet_rest(path: Path, seconds: float = REST_SECONDS, dt: float = 1 / 240) -> dict[str, tuple[str, float]]:
+    """The same in PyBullet: fixed base, self-collision on, the default joint motors off (free joints)."""
+    import pybullet as pb
+
+    c = pb.connect(pb.DIRECT)
+    try:
+        pb.setGravity(0, 0, -9.81, physicsClientId=c)
+        pb.setTimeStep(dt, physicsClientId=c)
+        body = pb.loadURDF(str(path), useFixedBase=True, physicsClientId=c,
+                           flags=pb.URDF_USE_SELF_COLLISION | pb.URDF_USE_INERTIA_FROM_FILE)
+        joints = {}
+        for j in range(pb.getNumJoints(body, physicsClientId=c)):
+            info = pb.getJointInfo(body, j, physicsClientId=c)
+            if info[2] in (pb.JOINT_REVOLUTE, pb.JOINT_PRISMATIC):
+                pb.setJointMotorControl2(body, j, pb.VELOCITY_CONTROL, force=0, physicsClientId=c)
+                joints[j] = (info[1].decode(), "slide" if info[2] == pb.JOINT_PRISMATIC else "hinge",
+                             pb.getJointState(body, j, physicsClientId=c)[0])
+        for _ in range(int(round(seconds / dt))):
+            pb.stepSimulation(physicsClientId=c)
+        return {name: (kind, pb.getJointState(body, j, physicsClientId=c)[0] - q0)
+                for j, (name, kind, q0) in joints.items()}
+    finally:
+        pb.disconnect(c)
+
+
+def drake_rest(path: Path, seconds: float = REST_SECONDS) -> dict[str, tuple[str, float]]:
+    """The same in Drake (discrete MultibodyPlant with its SceneGraph, 1 ms steps)."""
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
+    from pydrake.multibody.tree import PrismaticJoint
+    from pydrake.systems.analysis import Simulator
+    from pydrake.systems.framework import DiagramBuilder
+
+    builder = DiagramBuilder()
+    plant, _ = AddMultibodyPlantSceneGraph(builder, time_step=0.001)
+    Parser(plant).AddModels(str(path))
+    plant.Finalize()
+    sim = Simulator(builder.Build())
+    ctx = plant.GetMyContextFromRoot(sim.get_mutable_context())
+    joints = [plant.get_joint(i) for i in plant.GetJointIndices() if plant.get_joint(i).num_positions() == 1]
+    q0 = {j.name(): float(j.GetOnePosition(ctx)) for j in joints}
+    sim.AdvanceTo(seconds)
+    return {j.name(): ("slide" if isinstance(j, PrismaticJoint) else "hinge", float(j.GetOnePosition(ctx)) - q0[j.name()])
+            for j in joints}
+
+
+def test_rests_in_mujoco(urdf):
+    pytest.importorskip("mujoco")
+    moved = mujoco_rest(urdf)
+    assert moved, f"{urdf}: MuJoCo found no movable joint"
+    _assert_still(moved, f"MuJoCo, {urdf}")
+
+
+def test_rests_in_pybullet_with_self_collision(urdf):
+    moved = pybullet_rest(urdf)
+    assert moved, f"{urdf}: PyBullet found no movable joint"
+    _assert_still(moved, f"PyBullet, {urdf}")
+
+
+def test_parses_and_rests_in_drake(urdf):
+    pytest.importorskip("pydrake")
+    moved = drake_rest(urdf)
+    assert moved, f"{urdf}: Drake found no movable joint"
+    _assert_still(moved, f"Drake, {urdf}")
+
+
+def test_the_same_scan_gives_a_byte_identical_scene_urdf(kitchen, tmp_path):
+    """``recon build`` in a fresh process writes exactly the bytes the in-process reconstruction wrote."""
+    if kitchen["preset"] != "clean":
+        pytest.skip("one scan is enough")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(Path(__file__).resolve().parents[1])]
+                                                      + os.environ.get("PYTHONPATH", "").split(os.pathsep)))
+    r = subprocess.run([sys.executable, "-m", "recon", "build", str(kitchen["scan"]), "--labels", str(kitchen["labels"]),
+                        "--out", str(tmp_path), "--no-preview", "-q"], env=env, capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "scene.urdf").read_bytes() == kitchen["scene.urdf"].read_bytes()
+
+
+def test_scene_urdf_numbers_are_rounded_and_visuals_coloured_by_label(kitchen):
+    import xml.etree.ElementTree as ET
+
+    root = ET.parse(kitchen["scene.urdf"]).getroot()
+    for el in root.iter("origin"):
+        for v in (el.get("xyz") + " " + el.get("rpy")).split():
+            assert len(v.split(".")[-1]) <= 6 if "." in v else True, f"{v} has more than 6 decimals"
+    for el in root.iter("mass"):
+        assert len(el.get("value").replace("-", "").replace(".", "").lstrip("0")) <= 9
+    colours = {}
+    for link in root.iter("link"):
+        for vis in link.iter("visual"):
+            mat = vis.find("material")
+            assert mat is not None and mat.find("color") is not None, f"{link.get('name')}: a visual without a colour"
+            colours.setdefault(mat.get("name"), set()).add(mat.find("color").get("rgba"))
+    assert {"label_body", "label_door", "label_drawer", "label_handle"} <= set(colours)
+    assert all(len(v) == 1 for v in colours.values())
