@@ -25,12 +25,12 @@ MAX_OVERLAP = 5e-4    # m two links may interpenetrate at q = 0
 def kitchen(request, tmp_path_factory):
     """{"scene.urdf", "truth.urdf", "scan", "labels", "preset"} of kitchen seed 0 reconstructed from ``preset``."""
     import scenes
-    from recon import reconstruct
+    from recon import reconstruct, write_reconstruction
 
     out = tmp_path_factory.mktemp(f"kitchen_{request.param}")
     scenes.make_scene("kitchen", seed=0, preset=request.param, out=out / "truth", previews=False)
     rec = reconstruct(out / "truth" / "scan.npz", out / "truth" / "labels.json", seed=0)
-    paths = rec.write(out / "recon")
+    paths = write_reconstruction(rec, out / "recon")
     return {"scene.urdf": paths["scene.urdf"], "truth.urdf": out / "truth" / "truth.urdf",
             "scan": out / "truth" / "scan.npz", "labels": out / "truth" / "labels.json", "preset": request.param}
 
