@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-__all__ = ["ClearanceConfig", "ReconConfig"]
+__all__ = ["ClearanceConfig", "JointUncertaintyConfig", "ReconConfig"]
 
 
 @dataclass(frozen=True)
@@ -32,6 +32,20 @@ class ClearanceConfig:
     """A fitted wall moves back (out of the room) at most this far to clear an object."""
     max_passes: int = 4
     """Passes over the overlapping pairs (a cut can only shrink a shape, so few are needed)."""
+
+
+@dataclass(frozen=True)
+class JointUncertaintyConfig:
+    """The bootstrap of each movable joint's estimate (joint_uncertainty.py)."""
+
+    samples: int = 10
+    """Resamplings per movable joint (0 = no uncertainty written)."""
+    limit_samples: int = 3
+    """... of which this many also re-run the upper limit's collision sweep (the costly step)."""
+    max_points: int = 1500
+    """A part's points are subsampled (seeded) to at most this many before resampling."""
+    obstacle_margin: float = 0.1
+    """Obstacle points farther (m) than this beyond the joint's parts' reach are left out of its sweeps."""
 
 
 @dataclass(frozen=True)
@@ -276,6 +290,8 @@ class ReconConfig:
     # --- walls from the background (walls.py) ---
     walls: bool = True
     """Fit the room's walls to the background points and put them in scene.urdf / graph.json."""
+    joint_uncertainty: JointUncertaintyConfig = field(default_factory=JointUncertaintyConfig)
+    """How each movable joint's uncertainty is estimated (written in graph.json)."""
     wall_floor_margin: float = 0.05
     """Background points below this height (m) are floor, not wall."""
     wall_ransac_distance: float = 0.05

@@ -10,7 +10,8 @@ Layout (format ``partscene.graph/1``; lengths in metres, angles in radians, worl
                              "surface_planes": [{"normal", "d", "polygon"}],
                              "shapes": [{"type", "size", "T_world_part"}]}],
                   "joints": [{"name", "type", "parent_part_id", "child_part_id", "axis", "origin",
-                              "lower", "upper", "contact_score", "handle_part_id"}],
+                              "lower", "upper", "contact_score", "handle_part_id",
+                              "uncertainty": {"axis_deg", "origin_m", "upper", "samples", "method"}}],
                   "contacts": [{"parent_part_id", "child_part_id", "score", "align", "dist",
                                 "parent_plane", "child_plane"}]}],
      "supports": [[object id, supporter id | null]], "proximal": [[a, b]],
@@ -19,7 +20,9 @@ Layout (format ``partscene.graph/1``; lengths in metres, angles in radians, worl
 
 A part's ``size`` follows :mod:`recon.primitive` (box extents; cylinder (2r, 2r, length along local
 z); sphere (2r, 2r, 2r)). A part's ``shapes`` are its articulated-template shapes (a drawer's front and box, a body's carcass
-panels; empty = the fitted primitive alone). A root joint has ``parent_part_id`` null (its parent is the world link).
+panels; empty = the fitted primitive alone). A root joint has ``parent_part_id`` null (its parent is the world link). A movable joint's ``uncertainty``
+(recon/joint_uncertainty.py) gives the RMS spread of its axis (deg), of its axis position perpendicular to
+the axis (m) and of its upper limit over ``samples`` resamplings; absent on fixed joints.
 """
 
 from __future__ import annotations
@@ -30,10 +33,10 @@ from pathlib import Path
 
 import numpy as np
 
-from recon.config import ClearanceConfig, ReconConfig
+from recon.config import ClearanceConfig, JointUncertaintyConfig, ReconConfig
 from recon.errors import ScanError
-from recon.model import (ContactEdge, JointEstimate, ObjectReconstruction, PartFit, Reconstruction,
-                         SceneGraph)
+from recon.model import (ContactEdge, JointEstimate, JointUncertainty, ObjectReconstruction, PartFit,
+                         Reconstruction, SceneGraph)
 from recon.primitive import Primitive, SurfacePlane
 from recon.walls import Wall
 
@@ -74,6 +77,7 @@ def graph_dict(rec: Reconstruction) -> dict:
                 "child_part_id": j.child_part_id, "axis": _list(j.axis), "origin": _list(j.origin),
                 "lower": float(j.lower), "upper": float(j.upper), "contact_score": float(j.contact_score),
                 "handle_part_id": j.handle_part_id,
+                **({} if j.uncertainty is None else {"uncertainty": j.uncertainty.as_dict()}),
             } for j in o.joints],
             "contacts": [dataclasses.asdict(e) for e in o.contacts],
         })
@@ -103,6 +107,8 @@ def reconstruction_from_dict(doc: dict, source: str = "<dict>") -> Reconstructio
             cfg["candidates"] = tuple(cfg["candidates"])
         if isinstance(cfg.get("clearance"), dict):
             cfg["clearance"] = ClearanceConfig(**cfg["clearance"])
+        if isinstance(cfg.get("joint_uncertainty"), dict):
+            cfg["joint_uncertainty"] = JointUncertaintyConfig(**cfg["joint_uncertainty"])
         config = ReconConfig(**cfg)
         objects = []
         for o in doc["objects"]:
@@ -115,7 +121,9 @@ def reconstruction_from_dict(doc: dict, source: str = "<dict>") -> Reconstructio
                 for p in o["parts"])
             joints = tuple(JointEstimate(j["name"], j["type"], j["parent_part_id"], j["child_part_id"],
                                          j["axis"], j["origin"], j["lower"], j["upper"], j["contact_score"],
-                                         j.get("handle_part_id")) for j in o["joints"])
+                                         j.get("handle_part_id"),
+                                         JointUncertainty.from_dict(j["uncertainty"]) if j.get("uncertainty")
+                                         else None) for j in o["joints"])
             contacts = tuple(ContactEdge(**e) for e in o["contacts"])
             objects.append(ObjectReconstruction(
                 o["id"], o["category"], o["name"], o["root_part_id"], parts, contacts, joints,

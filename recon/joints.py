@@ -28,7 +28,7 @@ from recon.part_tree import PartTree
 from recon.primitive import Primitive
 from recon.templates import template_for
 
-__all__ = ["estimate_joints", "opening_face", "hinge", "sweep_limit"]
+__all__ = ["estimate_joints", "movable_joint", "opening_face", "hinge", "sweep_limit"]
 
 log = logging.getLogger(__name__)
 
@@ -152,6 +152,44 @@ def _translation(axis: np.ndarray, s: float) -> np.ndarray:
     return M
 
 
+def _drawer_travel(parent: Primitive, axis: np.ndarray, config: ReconConfig) -> float:
+    """A drawer's travel (m) before collisions: ``drawer_travel_fraction`` of the parent's depth along
+    ``axis`` (3,) less ``drawer_back_clearance``."""
+    lo, hi = _extent(parent, axis)
+    return config.drawer_travel_fraction * max(hi - lo - config.drawer_back_clearance, 0.0)
+
+
+def movable_joint(jtype: JointType, parent: Primitive, child: Primitive, handles: list[Primitive],
+                  moving: list[Primitive], obstacles: np.ndarray, config: ReconConfig
+                  ) -> tuple[np.ndarray, np.ndarray, float]:
+    """(axis (3,), origin (3,), upper) of a drawer's (PRISMATIC) or door's (REVOLUTE) joint, world frame.
+
+    parent, child : the fitted primitives; handles : the child's handles; moving : every primitive of
+    the child's subtree (swept for the limit); obstacles : (n, 3) points it must not sweep into, or
+    None to skip the sweep (upper is then NaN).
+    upper : metres or radians (0 when the first step already collides).
+    """
+    normal, _ = opening_face(parent, child, handles, config)
+    if jtype is JointType.PRISMATIC:
+        travel = _drawer_travel(parent, normal, config)
+        if obstacles is None:
+            return normal, child.center, float("nan")
+        step = max(min(config.swing_step, travel / 4), 1e-3)
+        steps = np.append(np.arange(step, travel, step), travel) if travel > 0 else np.zeros(1)
+        reach = sweep_limit(moving, lambda s: _translation(normal, s), steps, obstacles, config, reach=travel)
+        return normal, child.center, (reach if reach < travel - 1e-9 else travel)
+    axis, origin, desc = hinge(parent, child, handles, normal, config)
+    log.debug("hinge %s", desc)
+    if obstacles is None:
+        return axis, origin, float("nan")
+    angles = np.append(np.arange(config.swing_step, config.door_max_angle, config.swing_step),
+                       config.door_max_angle)
+    radius = max(float(np.max(np.linalg.norm(m.corners() - origin, axis=1))) for m in moving)
+    upper = sweep_limit(moving, lambda a: _rotation_about(axis, origin, a), angles, obstacles, config,
+                        reach=radius)
+    return axis, origin, upper
+
+
 def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str],
                     prims: dict[int, Primitive], tree: PartTree, obstacles_for, config: ReconConfig,
                     warn) -> tuple[JointEstimate, ...]:
@@ -179,32 +217,14 @@ def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str]
             joints.append(JointEstimate(names[c], JointType.FIXED, p, c, _UP, prims[c].center,
                                         contact_score=score))
             continue
-        normal, _ = opening_face(prims[p], prims[c], hprims, config)
         sub = tree.subtree(c)
-        moving = [prims[k] for k in sub]
-        obstacles = obstacles_for(sub)
-        if jtype is JointType.PRISMATIC:
-            lo, hi = _extent(prims[p], normal)
-            travel = config.drawer_travel_fraction * max(hi - lo - config.drawer_back_clearance, 0.0)
-            step = max(min(config.swing_step, travel / 4), 1e-3)
-            steps = np.append(np.arange(step, travel, step), travel) if travel > 0 else np.zeros(1)
-            reach = sweep_limit(moving, lambda s: _translation(normal, s), steps, obstacles, config,
-                                reach=travel)
-            upper = reach if reach < travel - 1e-9 else travel
-            if upper < travel:
-                warn(f"{names[c]}: drawer travel limited to {upper:.3f} m (of {travel:.3f} m) by "
-                     "scan points in its way")
-            axis, origin = normal, prims[c].center
-        else:
-            axis, origin, desc = hinge(prims[p], prims[c], hprims, normal, config)
-            log.debug("%s: %s", names[c], desc)
-            angles = np.append(np.arange(config.swing_step, config.door_max_angle, config.swing_step),
-                               config.door_max_angle)
-            radius = max(float(np.max(np.linalg.norm(m.corners() - origin, axis=1))) for m in moving)
-            upper = sweep_limit(moving, lambda a: _rotation_about(axis, origin, a), angles, obstacles,
-                                config, reach=radius)
-            if upper < config.door_max_angle - 1e-9:
-                log.info("%s: door swing stops at %.0f deg (collision)", names[c], np.degrees(upper))
+        axis, origin, upper = movable_joint(jtype, prims[p], prims[c], hprims, [prims[k] for k in sub],
+                                            obstacles_for(sub), config)
+        if jtype is JointType.PRISMATIC and upper < _drawer_travel(prims[p], axis, config):
+            warn(f"{names[c]}: drawer travel limited to {upper:.3f} m (of "
+                 f"{_drawer_travel(prims[p], axis, config):.3f} m) by scan points in its way")
+        elif jtype is JointType.REVOLUTE and upper < config.door_max_angle - 1e-9:
+            log.info("%s: door swing stops at %.0f deg (collision)", names[c], np.degrees(upper))
         if upper <= 0.0:
             warn(f"{names[c]}: the {labels[c]} cannot move without collision; upper limit 0")
         joints.append(JointEstimate(names[c], jtype, p, c, axis, origin, 0.0, float(upper), score,

@@ -20,7 +20,7 @@ import numpy as np
 from recon.config import ReconConfig
 from recon.primitive import Primitive, SurfacePlane
 
-__all__ = ["JointType", "PartFit", "ContactEdge", "JointEstimate", "ObjectReconstruction",
+__all__ = ["JointType", "PartFit", "ContactEdge", "JointUncertainty", "JointEstimate", "ObjectReconstruction",
            "SceneGraph", "Reconstruction"]
 
 
@@ -85,6 +85,33 @@ class ContactEdge:
     child_plane: int
 
 
+@dataclass(frozen=True)
+class JointUncertainty:
+    """How sure the reconstruction is of one movable joint (recon/joint_uncertainty.py).
+
+    axis_deg : RMS angle (degrees) between the axis re-estimated from resampled data and the estimate
+    origin_m : RMS distance (m) of the re-estimated axis point from the estimated axis line,
+        perpendicular to the axis (for a drawer: where its front is, across its travel)
+    upper : RMS deviation of the re-estimated upper limit (m for prismatic, rad for revolute)
+    samples : number of resamplings they were measured over; method : how (e.g. "bootstrap")
+    """
+
+    axis_deg: float
+    origin_m: float
+    upper: float
+    samples: int
+    method: str
+
+    def as_dict(self) -> dict:
+        return {"axis_deg": float(self.axis_deg), "origin_m": float(self.origin_m), "upper": float(self.upper),
+                "samples": int(self.samples), "method": str(self.method)}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "JointUncertainty":
+        return cls(float(d["axis_deg"]), float(d["origin_m"]), float(d["upper"]), int(d["samples"]),
+                   str(d["method"]))
+
+
 @dataclass(frozen=True, eq=False)
 class JointEstimate:
     """A joint of the part tree, in the world frame at the scanned (closed) state.
@@ -97,6 +124,7 @@ class JointEstimate:
     lower, upper : metres or radians; lower = 0 is the scanned state
     contact_score : Cont of the tree edge (0 for the root and for parts that touch nothing)
     handle_part_id : the handle moved by this joint, or None
+    uncertainty : JointUncertainty of a movable joint, None when not estimated (fixed joints)
     """
 
     name: str
@@ -109,6 +137,7 @@ class JointEstimate:
     upper: float = 0.0
     contact_score: float = 0.0
     handle_part_id: int | None = None
+    uncertainty: JointUncertainty | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "type", JointType(self.type))

@@ -34,6 +34,7 @@ from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.fitting import FitScore, fit_part
 from recon.handle_shapes import HandleShapes, mounted_handle_shapes, posed_handle_shapes
+from recon.joint_uncertainty import with_joint_uncertainty
 from recon.joints import estimate_joints
 from recon.model import ContactEdge, JointEstimate, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
 from recon.outliers import scan_without_outliers
@@ -353,6 +354,7 @@ def estimate_object_joints(state: ObjectState, obstacles: _Obstacles, supported_
     names = {i: joint_name(state.category, state.id, labels[i], i) for i in labels}
     joints = estimate_joints(state.category, names, labels, prims, tree, obstacles.for_object(state.id),
                              config, run.warn)
+    joints = with_joint_uncertainty(joints, state.source.parts, prims, obstacles.for_object(state.id), config, run.seed)
     shapes = template_shapes(joints, prims, labels, config) if config.template_shapes else {}
     shapes.update(posed_handle_shapes(state.handles, prims))
     parts = tuple(

@@ -24,7 +24,7 @@ from ._part_tree_image import png_of_part_trees, trees_from_scene_json
 from ._primitives import solids_from_truth, solids_from_urdf
 from ._scan_image import load_scan, png_of_scan
 from ._scene_image import png_of_scenes, view_azimuth
-from ._tables import criteria_table, key_value_table, metrics_table, pipeline_table
+from ._tables import criteria_table, key_value_table, metrics_table, pipeline_table, uncertainty_table
 from ._tasks import executed_urdf, task_figures
 
 __all__ = ["render_report", "read_json"]
@@ -97,7 +97,7 @@ def _tree_section(lay: DemoLayout, graph: dict | None, truth: dict | None) -> st
         figs.append(img(png_of_part_trees(panels), f"{name}: part tree"
                         + (" (estimate, truth)" if len(panels) == 2 else ""), f"tree.{name}"))
     body = f"<p>{intro}</p>" + (_missing("the estimated part trees", lay.graph_json) if graph is None else "")
-    return body + '<div class="grid">' + "".join(figs) + "</div>"
+    return body + '<div class="grid">' + "".join(figs) + "</div>" + (uncertainty_table(graph) if graph else "")
 
 
 def _task_key(task: Mapping, index: int) -> str:

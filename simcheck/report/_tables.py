@@ -11,7 +11,8 @@ from collections.abc import Mapping
 
 from ._html import badge, esc, num, table
 
-__all__ = ["flatten_numbers", "pipeline_table", "metrics_table", "criteria_table", "key_value_table"]
+__all__ = ["flatten_numbers", "pipeline_table", "metrics_table", "criteria_table", "key_value_table",
+           "uncertainty_table"]
 
 
 def flatten_numbers(doc: object, prefix: str = "") -> list[tuple[str, object]]:
@@ -119,3 +120,26 @@ def criteria_table(task_key: str, criteria: list[Mapping]) -> str:
                      num(c.get("threshold"), key + ".threshold", unit), num(c.get("margin"), key + ".margin", unit),
                      esc(c.get("description", "")) + (f"<br><i>{esc(c['detail'])}</i>" if c.get("detail") else "")])
     return table(["criterion", "result", "value", "", "threshold", "margin", "meaning"], rows, "criteria")
+
+
+def uncertainty_table(graph: Mapping) -> str:
+    """One row per movable joint of graph.json with an ``uncertainty`` block (recon's bootstrap spreads),
+    every number keyed ``graph.<joint>.uncertainty.<field>``; "" when no joint has one."""
+    rows = []
+    for obj in graph.get("objects", []) if isinstance(graph, Mapping) else []:
+        for j in obj.get("joints", []):
+            u = j.get("uncertainty")
+            if not isinstance(u, Mapping):
+                continue
+            key = f"graph.{j.get('name')}.uncertainty"
+            unit = "m" if j.get("type") == "prismatic" else "rad"
+            rows.append([f"<code>{esc(j.get('name'))}</code>", esc(j.get("type", "")),
+                         num(u.get("axis_deg"), key + ".axis_deg", "deg"), num(u.get("origin_m"), key + ".origin_m", "m"),
+                         num(u.get("upper"), key + ".upper", unit), num(u.get("samples"), key + ".samples"),
+                         esc(u.get("method", ""))])
+    if not rows:
+        return ""
+    return ("<h3>How sure the reconstruction is of each joint</h3>"
+            "<p>RMS spread over resamplings of the scan points (recon's bootstrap): axis direction, axis "
+            "position across the axis, upper limit.</p>"
+            + table(["joint", "type", "axis", "position", "upper limit", "samples", "method"], rows, "uncertainty"))
