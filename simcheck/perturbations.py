@@ -1,0 +1,141 @@
+"""Sampling the worlds of a robust certificate: one :class:`Perturbation` per sampled world (pure numpy).
+
+Sample ``i`` of seed ``s`` draws from ``numpy.random.default_rng([s, i])``: it does not depend on how many
+samples are drawn, so ``--replay-sample i`` rebuilds exactly that world.
+
+The task's joint (world frame, at q = 0):
+
+* centred on the value the scan supports (:class:`simcheck.robust_spreads.JointCentre`: recon's estimate
+  in graph.json), else on the certified URDF's own joint;
+* axis: turned by a rotation vector perpendicular to it, each of its two components N(0, σ²) with
+  σ = axis_deg / √2, so that the RMS angle is ``axis_deg``;
+* hinge line (revolute only; a prismatic joint's axis position does not change its motion): moved across
+  the axis by a vector whose two components are N(0, σ²), σ = origin_m / √2 (RMS distance origin_m);
+* upper limit: + N(0, upper²), kept at least a tenth of the centre's.
+
+Physics: uniform in :class:`PhysicsRanges`. Robot: base position error N(0, base_xy_m²) along x and y,
+heading N(0, base_yaw_deg²), perceived handle position N(0, handle_m²) per axis, position gain factor
+uniform in ``tracking_gain``. ``mode="physics"`` (robust ``--against`` a reference) leaves the joint and
+the robot as they are and samples the physics ranges only.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from simcheck.robust_spreads import JointCentre, JointSpreads, PhysicsRanges, RobotErrors
+
+__all__ = ["Perturbation", "sample_perturbation", "sample_perturbations", "MODES"]
+
+MODES = ("scan", "physics")
+
+
+@dataclass(frozen=True)
+class Perturbation:
+    """One sampled world, relative to the certified scene.
+
+    joint : the task's joint name; axis (3,) unit and origin (3,) m: its world axis / axis point at q = 0;
+    upper : its upper limit (m or rad); axis_off_deg / origin_off_m : how far those are from the
+    certified URDF's joint (angle; distance of the axis lines across the axis); joint_friction,
+    joint_damping : its dynamics; mass_scale : factor on the moving part's mass and inertia;
+    handle_friction : the handles' lateral friction coefficient; base_error : (dx m, dy m, dyaw rad) of
+    the robot's base (where it is minus where it thinks); handle_shift : (3,) m, world, the handle's true
+    position minus the perceived one; tracking_gain : factor on the arm's position gain.
+    """
+
+    index: int
+    joint: str
+    axis: tuple[float, float, float]
+    origin: tuple[float, float, float]
+    upper: float
+    axis_off_deg: float
+    origin_off_m: float
+    joint_friction: float
+    joint_damping: float
+    mass_scale: float
+    handle_friction: float
+    base_error: tuple[float, float, float]
+    handle_shift: tuple[float, float, float]
+    tracking_gain: float
+
+    def to_dict(self) -> dict:
+        return {"sample": self.index, "joint": self.joint, "axis": list(self.axis), "origin": list(self.origin),
+                "upper": self.upper, "axis_off_deg": self.axis_off_deg, "origin_off_m": self.origin_off_m,
+                "joint_friction": self.joint_friction, "joint_damping": self.joint_damping,
+                "mass_scale": self.mass_scale, "handle_friction": self.handle_friction,
+                "base_error": list(self.base_error), "handle_shift": list(self.handle_shift),
+                "tracking_gain": self.tracking_gain}
+
+
+def _perpendicular_basis(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Two unit vectors (3,) perpendicular to the unit ``a`` (3,) and to each other."""
+    helper = np.array([0.0, 0.0, 1.0]) if abs(a[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+    u = np.cross(a, helper)
+    u /= np.linalg.norm(u)
+    return u, np.cross(a, u)
+
+
+def _rotated(v: np.ndarray, rotvec: np.ndarray) -> np.ndarray:
+    angle = float(np.linalg.norm(rotvec))
+    if angle < 1e-15:
+        return v.copy()
+    k = rotvec / angle
+    return v * np.cos(angle) + np.cross(k, v) * np.sin(angle) + k * (k @ v) * (1 - np.cos(angle))
+
+
+def sample_perturbation(index: int, seed: int, joint: str, joint_type: str, urdf_axis, urdf_origin, urdf_upper: float,
+                        centre: JointCentre | None, spreads: JointSpreads, physics: PhysicsRanges,
+                        robot: RobotErrors, mode: str = "scan") -> Perturbation:
+    """Sample world ``index`` (see the module docstring).
+
+    urdf_axis (3,), urdf_origin (3,), urdf_upper : the certified URDF's joint, world frame at q = 0.
+    centre : the scan-supported joint (None: the URDF's). joint_type : "prismatic" or "revolute".
+    """
+    if mode not in MODES:
+        raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
+    rng = np.random.default_rng([int(seed), int(index)])
+    a_urdf = np.asarray(urdf_axis, dtype=np.float64)
+    a_urdf = a_urdf / np.linalg.norm(a_urdf)
+    o_urdf = np.asarray(urdf_origin, dtype=np.float64)
+    # every draw happens in every mode, in this order: the physics of sample i is the same in both modes
+    z_axis, z_origin, z_upper = rng.standard_normal(2), rng.standard_normal(2), rng.standard_normal()
+    friction = rng.uniform(*physics.joint_friction)
+    damping = rng.uniform(*physics.joint_damping)
+    mass = rng.uniform(*physics.mass_scale)
+    handle_friction = rng.uniform(*physics.handle_friction)
+    base = rng.standard_normal(3) * [robot.base_xy_m, robot.base_xy_m, np.radians(robot.base_yaw_deg)]
+    handle = rng.standard_normal(3) * robot.handle_m
+    gain = rng.uniform(*robot.tracking_gain)
+    if mode == "physics":
+        return Perturbation(int(index), joint, tuple(a_urdf), tuple(o_urdf), float(urdf_upper), 0.0, 0.0,
+                            float(friction), float(damping), float(mass), float(handle_friction), (0.0, 0.0, 0.0),
+                            (0.0, 0.0, 0.0), 1.0)
+    if centre is None:
+        a_c, o_c, u_c = a_urdf, o_urdf, float(urdf_upper)
+    else:
+        a_c = np.asarray(centre.axis, dtype=np.float64)
+        a_c = a_c / np.linalg.norm(a_c)
+        if a_c @ a_urdf < 0:
+            a_c = -a_c
+        o_c, u_c = np.asarray(centre.origin, dtype=np.float64), float(centre.upper)
+    u1, u2 = _perpendicular_basis(a_c)
+    s_axis = np.radians(spreads.axis_deg) / np.sqrt(2.0)
+    axis = _rotated(a_c, s_axis * (z_axis[0] * u1 + z_axis[1] * u2))
+    if joint_type == "revolute":
+        origin = o_c + spreads.origin_m / np.sqrt(2.0) * (z_origin[0] * u1 + z_origin[1] * u2)
+    else:
+        origin = o_urdf.copy()
+    upper = max(u_c + spreads.upper * z_upper, 0.1 * u_c)
+    d = origin - o_urdf
+    off = float(np.linalg.norm(d - (d @ a_urdf) * a_urdf))
+    ang = float(np.degrees(np.arccos(np.clip(axis @ a_urdf, -1.0, 1.0))))
+    return Perturbation(int(index), joint, tuple(map(float, axis)), tuple(map(float, origin)), float(upper), ang, off,
+                        float(friction), float(damping), float(mass), float(handle_friction),
+                        tuple(map(float, base)), tuple(map(float, handle)), float(gain))
+
+
+def sample_perturbations(n: int, seed: int, *args, **kwargs) -> tuple[Perturbation, ...]:
+    """Samples 0 .. n - 1 of :func:`sample_perturbation` (same further arguments)."""
+    return tuple(sample_perturbation(i, seed, *args, **kwargs) for i in range(int(n)))
