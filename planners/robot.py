@@ -27,10 +27,46 @@ import numpy as np
 
 from scenes.atomic_write import write_text_atomic
 
-__all__ = ["RobotSpec", "default_robot", "robot_cache_dir", "PANDA_HOME"]
+__all__ = ["RobotSpec", "GripperModel", "default_robot", "robot_cache_dir", "PANDA_HOME"]
 
 #: Panda arm home configuration (rad): elbow up, hand pointing down in front of the base.
 PANDA_HOME = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
+
+
+@dataclass(frozen=True)
+class GripperModel:
+    """What a two-finger parallel gripper can hold: the basis of the simulated grasp's force bound.
+
+    The grasp holds by friction between two finger pads squeezing the handle from opposite sides, so the
+    force it transmits is at most ``2 * pad_friction * grip_force`` (two contacts, each pressed with the
+    grip force); above it the handle slips out of the fingers. A two-pad grip resists little torque (pad
+    friction over a patch about a centimetre across: about 1 N*m for the defaults): the handle turns in
+    the fingers instead, so the simulated grasp transmits no torque.
+
+    Defaults -- the Franka Hand of the Panda: ``grip_force`` 70 N is its rated continuous grip force
+    (Franka Emika's datasheet: 70 N continuous, 140 N maximum); ``pad_friction`` 0.8 is an ASSUMPTION
+    for rubber-covered fingertip pads on a metal or lacquered handle (dry rubber on metal or wood: 0.6-0.9
+    in engineering friction tables); stock hard-plastic fingertips hold less -- set the value of the real
+    pads. Holding force: 112 N.
+
+    Attributes:
+        grip_force: rated continuous squeeze of the fingers, N.
+        pad_friction: static friction coefficient between a finger pad and a handle (dimensionless).
+    """
+
+    grip_force: float = 70.0
+    pad_friction: float = 0.8
+
+    def __post_init__(self) -> None:
+        for name in ("grip_force", "pad_friction"):
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float)) and value > 0 and np.isfinite(value)):
+                raise ValueError(f"GripperModel: {name} must be a positive number, got {value!r}")
+
+    @property
+    def holding_force(self) -> float:
+        """The largest force, N, the grasp transmits before the handle slips: 2 * mu * grip force."""
+        return 2.0 * self.pad_friction * self.grip_force
 
 
 @dataclass(frozen=True)
@@ -62,6 +98,8 @@ class RobotSpec:
         Finger joint value (metres, per finger) with the gripper open / closed.
     max_finger_force : float
         Newtons per finger that an executor may apply to close the gripper.
+    gripper : GripperModel
+        What the gripper can hold (grip force, pad friction): bounds the force an executed grasp transmits.
     """
 
     urdf: Path
@@ -76,9 +114,12 @@ class RobotSpec:
     finger_open: float = 0.04
     finger_closed: float = 0.0
     max_finger_force: float = 20.0
+    gripper: GripperModel = field(default_factory=GripperModel)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "urdf", Path(self.urdf))
+        if isinstance(self.gripper, dict):
+            object.__setattr__(self, "gripper", GripperModel(**self.gripper))
         if len(self.base_joints) != 3:
             raise ValueError(f"RobotSpec({self.urdf}): base_joints must be (x, y, yaw), got {self.base_joints}")
         if len(self.home) != len(self.joint_names):

@@ -5,7 +5,7 @@ software versions and timings. Written as ``certificate.json`` (atomically) and 
 
     {"format": "partscene.certificate/2", "ok": false,
      "scene": "scene.urdf", "against": "truth.urdf" | null, "robot": "robot.urdf",
-     "criteria": {"name": "partscene-default", "version": "1.0", ...thresholds...},
+     "criteria": {"name": "partscene-default", "version": "2.0", ...thresholds...},
      "seeds": {"seed": 0}, "versions": {"pybullet": ..., "pinocchio": ..., "ompl": ..., "numpy": ..., "partscene": ...},
      "timings": {"total": s},
      "tasks": [{"kind": "open-drawer", "joint": "...", "status": "certified" | "failed" | "not_planned" | "unreachable" | ...,

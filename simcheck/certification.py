@@ -186,8 +186,7 @@ class Session:
                                         -criteria.opened_fraction, "joint opening reached / requested",
                                         f"the reference {self.against} {what} {task.joint!r}: the part cannot open"))
             return self._judged(task, plan, crit, timings, seed, unit, None, [], est, ref)
-        requested = plan.amount if ref.type == est.type else default_amount(
-            "open-door" if ref.type == "revolute" else "open-drawer", ref, state.get(task.joint, 0.0))
+        requested = plan.amount         # the estimate's request, measured along its opening direction
         camera = None
         w = self.exec_world
         if out is not None and (images or video):
@@ -202,7 +201,8 @@ class Session:
                 camera.frame()
 
         t, c0 = time.perf_counter(), time.process_time()
-        rollout = execute_task(w, plan, self.physics, requested_amount=requested,
+        rollout = execute_task(w, plan, self.physics, requested_amount=requested, opening_type="revolute" if est.type == "continuous" else est.type,
+                               opening_axis=est.axis_world,
                                frame_callback=camera.snap if camera else None,
                                sample_callback=on_sample if camera is not None and video else None)
         self.last_rollout = rollout

@@ -3,7 +3,8 @@
 Two frozen dataclasses:
 
 * :class:`PhysicsConfig` -- how the world is simulated and how the robot is driven (time step, solver
-  iterations, damping, emulated joint friction, controller speed limits, grasp force bound).
+  iterations, damping, emulated joint friction, controller speed limits, when a grasp forms and how its load is averaged; the grasp's force bound
+  comes from the robot's gripper model, ``planners.robot.GripperModel``).
 * :class:`CriteriaConfig` -- what a certificate demands. It has a ``name`` and a ``version``; a
   certificate records both and every value, so a certificate says which rules it was judged by.
 """
@@ -44,15 +45,27 @@ class PhysicsConfig:
         speed_scale: fraction of each robot joint's URDF velocity limit used to time-parametrise a plan.
         max_joint_speed: cap on any robot joint speed while executing, rad/s or m/s.
         open_speed_scale: extra slow-down of the opening segment (pulling an object is done gently).
+        ramp_time: seconds over which every segment's speed ramps up from rest and back down to rest
+            (a trapezoidal velocity profile, as a real arm's acceleration limits impose; with a step in
+            speed the arm jerks a grasped drawer to speed in one physics step).
         settle_time: seconds the robot holds still after each segment before the next one starts.
         final_settle_time: seconds simulated after the last segment before the end state is measured.
         gripper_close_time: seconds allowed for the fingers to close on a handle.
         gripper_open_time: seconds allowed for the fingers to open on release.
-        grasp_max_force: force bound of the grasp attachment, N (bounded so that a motion the object
-            cannot follow makes the grasp slip instead of dragging the object through its joint).
         grasp_break_distance: slip (metres) between the tool and the grasped point at which the
             attachment is considered torn off and removed, as a real grasp would let go.
-        grasp_min_finger_contacts: finger links that must touch the handle link before attaching.
+        grasp_force_window: seconds over which the grasp's force is averaged (a running mean at every
+            physics step) for the slip test and the recorded ``grasp_force``: a friction grip slips under
+            a sustained load, not under a one-step solver impulse.
+        grasp_max_turn: the grasp is lost when the handle has turned more than this in the fingers, rad
+            (the grasp transmits no torque; 20 deg turns a bar out of flat pads).
+        grasp_contact_distance: a finger's contact point with the handle touches when it is at most this
+            far, metres (PyBullet keeps contact points up to ``contact_breaking_threshold`` apart).
+        grasp_normal_angle: largest angle, rad, between a finger's contact normal and its opening
+            direction for the contact to be on the finger's pad (30 deg: a fingertip or finger side
+            touching is 90 deg off; a pad on a round or slightly tilted bar is a few deg off).
+        grasp_min_travel: a finger nearer than this (m or rad) to fully closed was not stopped by the handle.
+        grasp_min_width: the handle between the two pads' contact points must be at least this wide, metres.
         robot_position_gain: PyBullet position-control gain of the robot joints.
         record_every: record one rollout sample, and check the grasp slip against
             ``grasp_break_distance``, every this many physics steps (5 = 32 Hz; checking the slip at every
@@ -74,13 +87,18 @@ class PhysicsConfig:
     speed_scale: float = 0.5
     max_joint_speed: float = 0.8
     open_speed_scale: float = 0.6
+    ramp_time: float = 0.25
     settle_time: float = 0.25
     final_settle_time: float = 1.0
     gripper_close_time: float = 0.6
     gripper_open_time: float = 0.4
-    grasp_max_force: float = 400.0
     grasp_break_distance: float = 0.06
-    grasp_min_finger_contacts: int = 2
+    grasp_force_window: float = 0.05
+    grasp_max_turn: float = 0.3490658503988659
+    grasp_contact_distance: float = 0.0005
+    grasp_normal_angle: float = 0.5235987755982988
+    grasp_min_travel: float = 0.001
+    grasp_min_width: float = 0.003
     robot_position_gain: float = 0.3
     record_every: int = 5
     control_every: int = 1
@@ -100,6 +118,9 @@ class CriteriaConfig:
     Attributes:
         opened_fraction: minimum opened joint value / requested amount at the end (0.9: the issue's
             "joint reaches >= 90% of the requested amount").
+        opened_overshoot: maximum opening past the request at the end, as a fraction of the request
+            (0.1: a door swung far past the plan, or a drawer pulled out farther, moved where nothing
+            was checked for collision).
         settled_linear_speed: maximum speed of the moved link at the end, m/s (0.1, as in common
             open-cabinet benchmarks such as ManiSkill's OpenCabinetDrawer/Door).
         settled_angular_speed: maximum angular speed of the moved link at the end, rad/s (1.0, same source).
@@ -119,8 +140,9 @@ class CriteriaConfig:
     """
 
     name: str = "partscene-default"
-    version: str = "1.0"
+    version: str = "2.0"
     opened_fraction: float = 0.9
+    opened_overshoot: float = 0.1
     settled_linear_speed: float = 0.1
     settled_angular_speed: float = 1.0
     handle_path_tolerance: float = 0.03

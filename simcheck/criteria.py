@@ -15,8 +15,8 @@ import numpy as np
 from simcheck.config import DEFAULT_CRITERIA, CriteriaConfig
 from simcheck.rollout import Rollout
 
-__all__ = ["CriterionResult", "opened_fraction", "handle_path_deviation", "settled_linear_speed",
-           "settled_angular_speed", "unexpected_contact_force", "unexpected_contact_depth", "grasp_held",
+__all__ = ["CriterionResult", "opened_amount", "opened_fraction", "opened_overshoot", "handle_path_deviation", "settled_linear_speed",
+           "settled_angular_speed", "unexpected_contact_force", "unexpected_contact_depth", "grasp_held", "grasp_force",
            "robot_joint_limits", "plan_found", "plan_collision_free", "rollout_criteria", "FLOOR"]
 
 FLOOR = "floor"
@@ -76,14 +76,49 @@ def _judge(name, value, threshold, comparison, unit, description, detail_fail, d
                            detail_pass if passed else detail_fail)
 
 
+def opened_amount(r: Rollout) -> tuple[float, str]:
+    """How far the executed part opened, m or rad, from the first sample to the end, and how it was measured.
+
+    Along the PLANNED opening direction (``r.opening_type``, ``r.opening_axis``): the handle link's
+    displacement along the axis (prismatic), or its rotation about the axis summed sample to sample
+    (revolute), so a reference whose joint axis or range sign is the opposite of the estimate's is
+    judged by how it moved, not by its raw joint value. Without an opening direction: the executed
+    joint's value change."""
+    raw = float(r.object_q[-1] - r.object_q0)
+    axis = np.asarray(r.opening_axis, dtype=float)
+    if r.opening_type not in ("prismatic", "revolute") or not np.isfinite(axis).all() or r.n < 2:
+        return raw, f"joint {r.joint}'s value changed by {raw:.3f}"
+    T = r.T_world_handle
+    if r.opening_type == "prismatic":
+        opened = float((T[-1, :3, 3] - T[0, :3, 3]) @ axis)
+    else:
+        R_step = np.einsum("nij,nkj->nik", T[1:, :3, :3], T[:-1, :3, :3])      # R_k+1 R_k^T
+        from scipy.spatial.transform import Rotation
+        opened = float((Rotation.from_matrix(R_step).as_rotvec() @ axis).sum())
+    how = (f"measured along the planned {r.opening_type} axis [{axis[0]:.2f}, {axis[1]:.2f}, {axis[2]:.2f}]: "
+           f"{opened:.3f}; executed joint {r.joint} changed by {raw:+.3f}")
+    return opened, how
+
+
 def opened_fraction(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
-    """(final joint value - initial value) / requested amount, at the end of the rollout."""
-    opened = float(r.object_q[-1] - r.object_q0)
+    """Opening reached at the end / requested amount (see :func:`opened_amount`), at least ``c.opened_fraction``."""
+    opened, how = opened_amount(r)
     frac = opened / r.requested_amount if r.requested_amount > 0 else -math.inf
     return _judge("opened_fraction", frac, c.opened_fraction, ">=", "",
-                  "joint opening reached at the end / opening requested",
-                  f"joint {r.joint} opened {opened:.3f} of the requested {r.requested_amount:.3f} "
-                  f"({frac:.0%}, needs {c.opened_fraction:.0%})")
+                  "opening reached at the end (along the planned opening direction) / opening requested",
+                  f"{r.joint} opened {opened:.3f} of the requested {r.requested_amount:.3f} "
+                  f"({frac:.0%}, needs {c.opened_fraction:.0%}; {how})", how)
+
+
+def opened_overshoot(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """How far past the request the part ended, as a fraction of the request (0 when not past it); at
+    most ``c.opened_overshoot``."""
+    opened, how = opened_amount(r)
+    over = max(opened / r.requested_amount - 1.0, 0.0) if r.requested_amount > 0 else math.inf
+    return _judge("opened_overshoot", over, c.opened_overshoot, "<=", "",
+                  "opening past the request at the end, as a fraction of the request",
+                  f"{r.joint} ended {over:.0%} past the requested {r.requested_amount:.3f} (at most "
+                  f"{c.opened_overshoot:.0%}; {how}): the part moved farther than planned", how)
 
 
 def handle_path_deviation(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
@@ -182,6 +217,24 @@ def grasp_held(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionRes
                   f"handle {r.handle_link} slipped {value:.3f} m in the gripper{note}")
 
 
+def grasp_force(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """Peak, N, over the grasped phase of the grasp's force averaged over ``grasp_force_window`` (the
+    recorded ``grasp_force``); threshold: the force the robot's gripper holds (``r.holding_force``, from
+    its ``GripperModel``). ``inf`` when no grasp was made."""
+    desc = "peak force through the grasp (mean over 50 ms) / what the gripper holds"
+    held = r.grasp_active | (r.grasp_force > 0)
+    if not held.any():
+        return _judge("grasp_force", math.inf, r.holding_force, "<=", "N", desc,
+                      f"handle {r.handle_link} was never grasped, so no grasp force was measured")
+    force = np.where(held, r.grasp_force, 0.0)
+    k = int(np.argmax(force))
+    seg = r.segment_names[r.segment[k]] if 0 <= r.segment[k] < len(r.segment_names) else "settle"
+    return _judge("grasp_force", float(force[k]), r.holding_force, "<=", "N", desc,
+                  f"pulling {r.joint} took {force[k]:.0f} N through the grasp of {r.handle_link} at t={r.t[k]:.2f} s "
+                  f"during {seg}; the gripper holds {r.holding_force:.0f} N (the estimated articulation does not "
+                  f"match how the part moves, or the part is blocked)")
+
+
 def robot_joint_limits(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
     """Largest excursion of a robot joint beyond its URDF limits, rad or m."""
     over = np.maximum(r.robot_q - r.robot_upper[None, :], r.robot_lower[None, :] - r.robot_q)
@@ -208,6 +261,6 @@ def plan_collision_free(max_depth: float, detail: str, c: CriteriaConfig = DEFAU
 
 def rollout_criteria(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> tuple[CriterionResult, ...]:
     """Every rollout criterion, in the order a failure reason lists them (most telling first)."""
-    return (grasp_held(r, c), opened_fraction(r, c), handle_path_deviation(r, c), unexpected_contact_force(r, c),
+    return (grasp_held(r, c), grasp_force(r, c), opened_fraction(r, c), opened_overshoot(r, c), handle_path_deviation(r, c), unexpected_contact_force(r, c),
             unexpected_contact_depth(r, c), settled_linear_speed(r, c), settled_angular_speed(r, c),
             robot_joint_limits(r, c))

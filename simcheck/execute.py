@@ -6,16 +6,26 @@ by ``open_speed_scale``); at every physics step (160 Hz) the robot's joints get 
 feed-forward velocity (PyBullet position control with the joints' URDF effort limits). The scene's joints
 are never set during a task: the object moves only because the robot pushes or pulls it.
 
-How the grasp is made -- a force-bounded attachment, not friction alone. After the grasp segment the
-fingers close; only if at least ``grasp_min_finger_contacts`` finger links then touch the handle link is a
-fixed constraint created between the tool link and the handle, at their current relative pose, with
-``maxForce = grasp_max_force`` (400 N). Why: in PyBullet a pure friction grasp of a thin handle pulled
-a drawer when the base moved but slipped when the arm pulled, unless handle friction, finger force
-and finger coupling were tuned per object (STACK.md); the attachment is reliable on any handle yet
-still honest: it exists only where the real fingers closed on the real handle, its force is bounded so
-that a motion the object cannot follow (a wrong axis, a wrong hinge) makes it lag, and it is torn off
-(removed) when the grasped point drifts more than ``grasp_break_distance`` from the tool -- a grasp
-that would have slipped is reported as lost, never as held.
+How the grasp is made -- what the robot's gripper can do, not a weld. After the grasp segment the fingers
+close; a grasp forms only where a real two-finger gripper holds (:func:`simcheck.grasp.grasp_formation`
+on PyBullet's contact points): both finger pads touch the handle from opposite sides, against their
+closing directions, and the fingers were stopped by the handle, not fully closed. Then a point-to-point
+constraint joins the tool frame's origin to that point of the handle. It transmits what pad friction
+can: the robot spec's ``GripperModel`` gives the holding force ``F = 2 * mu * grip force``; every
+physics step the constraint's force is read, and when its running mean over ``grasp_force_window``
+exceeds ``F`` the handle slips out: the constraint is removed and the grasp is lost for the rest of the
+task. Each constraint row is capped at ``F`` (PyBullet bounds rows, not the whole force: three rows at
+``F`` would be ``sqrt(3) F``), so no direction slips below the bound, and the whole-force test slips
+the grasp above it. The grasp transmits no torque: a two-pad grip resists about 1 N*m, and the
+position-controlled simulated arm is far stiffer than a real compliant one (it pressed 3-20 N*m through
+a rigid grasp on correctly planned openings), so the handle turns in the fingers; the grasp is lost
+when it has turned more than ``grasp_max_turn``, or when the grasped point drifts more than
+``grasp_break_distance`` from the tool.
+
+Why a constraint and not finger friction: in PyBullet a pure friction grasp of a thin handle pulled a
+drawer when the base moved but slipped when the arm pulled, unless handle friction, finger force and
+finger coupling were tuned per object (STACK.md); the bounded constraint holds exactly what the modelled
+gripper holds on any handle.
 """
 
 from __future__ import annotations
@@ -27,6 +37,7 @@ from collections import defaultdict
 import numpy as np
 
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
+from simcheck.grasp import grasp_formation
 from simcheck.planned_task import GRASP, OPEN, RELEASE, PlannedSegment, PlannedTask
 from simcheck.rollout import Rollout
 from simcheck.world import World
@@ -87,6 +98,12 @@ class _Recorder:
         self.planned_object_q = np.nan
         self.T_handle_grasp: np.ndarray | None = None
         self.sample_callback = None
+        self.holding_force = world.robot_spec.gripper.holding_force
+        self.window = max(1, int(round(config.grasp_force_window / config.time_step)))
+        self.history = np.zeros(self.window)           # per step: |f|, N (a ring buffer)
+        self.filled = 0
+        self.mean = 0.0                                 # running mean of the history (0 when detached)
+        self.peak = 0.0                                 # largest running mean since the last sample
 
     def grasp_point(self, T_world_handle: np.ndarray | None = None) -> np.ndarray:
         """(3,) world position of the grasped point of the handle (NaN when not attached);
@@ -96,10 +113,33 @@ class _Recorder:
         T = self.world.scene_link_pose(self.handle) if T_world_handle is None else T_world_handle
         return T[:3, :3] @ self.T_handle_grasp[:3, 3] + T[:3, 3]
 
+    def turn(self, T_world_handle: np.ndarray | None = None) -> float:
+        """Angle, rad, by which the handle has turned in the fingers since the grasp (0 when not attached)."""
+        if self.T_handle_grasp is None or not self.world.attached:
+            return 0.0
+        T = self.world.scene_link_pose(self.handle) if T_world_handle is None else T_world_handle
+        R_tool = self.world.robot_link_pose(self.world.robot_spec.tool_link)[:3, :3]
+        R = (T[:3, :3] @ self.T_handle_grasp[:3, :3]).T @ R_tool
+        return float(np.arccos(np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)))
+
+    def track_force(self) -> None:
+        """Read the grasp's force of this step into the running mean (reset when detached)."""
+        if not self.world.attached:
+            if self.filled:
+                self.history[:] = 0.0
+                self.filled = 0
+                self.mean = 0.0
+            return
+        self.history[self.filled % self.window] = self.world.grasp_force()
+        self.filled += 1
+        self.mean = float(self.history.sum()) / self.window     # steps before the grasp count as 0
+        self.peak = max(self.peak, self.mean)
+
     def after_step(self) -> None:
         w = self.world
         self.t += self.config.time_step
         self.steps += 1
+        self.track_force()
         if self.steps % self.config.contact_every == 0:
             for c in w.robot_contacts(self.config.contact_tolerance):
                 key = (c.link_a, c.link_b)
@@ -124,12 +164,14 @@ class _Recorder:
         r["T_world_handle"].append(T_handle)
         r["tool_pos"].append(w.robot_link_position(w.robot_spec.tool_link))
         r["grasp_point"].append(self.grasp_point(T_handle))
+        r["grasp_turn"].append(self.turn(T_handle))
         r["planned_tool_pos"].append(np.array(self.planned_tool, dtype=float))
         r["planned_object_q"].append(self.planned_object_q)
         r["link_speed"].append(float(np.linalg.norm(v)))
         r["link_angular_speed"].append(float(np.linalg.norm(om)))
         r["grasp_active"].append(w.attached)
-        r["grasp_force"].append(w.grasp_force())
+        r["grasp_force"].append(self.peak)
+        self.peak = self.mean
         r["finger_q"].append(w.finger_q())
         r["finger_contacts"].append(w.finger_contact_count(self.handle))
         for (a, b), (f, d) in self.contacts.items():
@@ -152,14 +194,17 @@ def _step(world: World, rec: _Recorder, n: int, on_step=None) -> None:
 
 def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAULT_PHYSICS, *,
                  requested_amount: float | None = None, reset_robot: bool = True,
-                 frame_callback=None, sample_callback=None) -> Rollout:
+                 frame_callback=None, sample_callback=None, opening_type: str = "",
+                 opening_axis: np.ndarray | None = None) -> Rollout:
     """Execute ``task`` in ``world`` with physics and return the recorded :class:`Rollout`.
 
     Args:
         world: a world holding the scene the plan is executed on (the estimate, or the reference with
             ``--against``) and the robot. Its scene joints are never reset here.
         task: the plan. ``task.joint_names`` must be the world robot's ``joint_names``.
-        requested_amount: the opening asked for, in the executed joint's units (default ``task.amount``).
+        requested_amount: the opening asked for, m or rad (default ``task.amount``).
+        opening_type, opening_axis: the planned joint's type ("prismatic"/"revolute") and (3,) world axis
+            toward which it opens: the opening is measured along it (see ``Rollout.opening_axis``).
         reset_robot: place the robot at the plan's first configuration first (the robot's start state;
             the scene is left as it is, so a scenario carries the world state from task to task).
         frame_callback: called as ``frame_callback(label)`` at key frames ("start", "grasped",
@@ -188,13 +233,24 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
     snap("start")
     rec.sample()
 
+    def lose_grasp(why: str) -> None:
+        world.detach()
+        rec.track_force()
+        notes.append(why)
+
     def check_slip() -> None:
+        if world.attached and rec.mean > rec.holding_force:
+            lose_grasp(f"handle slipped out of the fingers at t={rec.t:.2f} s: the grasp had to transmit "
+                       f"{rec.mean:.0f} N (mean over {config.grasp_force_window * 1e3:.0f} ms), more than the "
+                       f"gripper holds ({rec.holding_force:.0f} N)")
         if rec.steps % config.record_every == 0 and world.attached and rec.T_handle_grasp is not None:
             slip = float(np.linalg.norm(rec.grasp_point() - world.robot_link_position(robot.tool_link)))
+            turn = rec.turn()
             if slip > config.grasp_break_distance:
-                world.detach()
-                notes.append(f"grasp torn off at t={rec.t:.2f} s: the handle lagged the tool by {slip:.3f} m "
-                             f"(attachment force bound {config.grasp_max_force:.0f} N)")
+                lose_grasp(f"grasp torn off at t={rec.t:.2f} s: the handle lagged the tool by {slip:.3f} m")
+            elif turn > config.grasp_max_turn:
+                lose_grasp(f"handle turned out of the fingers at t={rec.t:.2f} s: it turned "
+                           f"{np.degrees(turn):.0f} deg in the grasp (at most {np.degrees(config.grasp_max_turn):.0f})")
 
     def set_fingers(open_: bool, seconds: float, hold_q: np.ndarray) -> None:
         nonlocal fingers_open
@@ -207,15 +263,17 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
 
     def close_and_grasp(hold_q: np.ndarray) -> None:
         set_fingers(False, config.gripper_close_time, hold_q)
-        touching = world.finger_contact_count(handle)
-        if touching >= config.grasp_min_finger_contacts:
-            world.attach(handle, config.grasp_max_force)
+        formed = grasp_formation(world.finger_contacts(handle), handle,
+                                 contact_distance=config.grasp_contact_distance,
+                                 normal_angle=config.grasp_normal_angle, min_travel=config.grasp_min_travel,
+                                 min_width=config.grasp_min_width)
+        if formed.ok:
+            world.attach(handle, rec.holding_force)
             T_w_tool = world.robot_link_pose(robot.tool_link)
             rec.T_handle_grasp = np.linalg.inv(world.scene_link_pose(handle)) @ T_w_tool
             snap("grasped")
         else:
-            notes.append(f"fingers closed on {touching} of {config.grasp_min_finger_contacts} required contacts "
-                         f"with handle link {handle!r}: no grasp")
+            notes.append(f"no grasp: {formed.reason}")
 
     hold = task.segments[0].q[0]
     for i, seg in enumerate(task.segments):
@@ -256,6 +314,9 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
         planned_object_q=np.asarray(rows["planned_object_q"], dtype=float),
         link_speed=np.asarray(rows["link_speed"]), link_angular_speed=np.asarray(rows["link_angular_speed"]),
         grasp_active=np.asarray(rows["grasp_active"], dtype=bool), grasp_force=np.asarray(rows["grasp_force"]),
+        grasp_turn=np.asarray(rows["grasp_turn"]), opening_type=opening_type,
+        opening_axis=None if opening_axis is None else np.asarray(opening_axis, dtype=float).reshape(3),
+        holding_force=float(rec.holding_force),
         finger_q=np.asarray(rows["finger_q"]).reshape(len(rows["t"]), -1),
         finger_contacts=np.asarray(rows["finger_contacts"], dtype=int),
         contact_sample=np.asarray([c[0] for c in cr], dtype=int),
@@ -269,27 +330,45 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
         wall_time=time.perf_counter() - t0)
 
 
+def _ramped(t: np.ndarray, duration: float, ramp: float) -> tuple[np.ndarray, np.ndarray]:
+    """Trapezoidal time scaling: (path time u(t), rate du/dt), both (m,), for real times ``t`` in
+    [0, duration + ramp], seconds. The rate rises linearly from 0 to 1 over ``ramp`` seconds, stays 1, and
+    falls back to 0 at ``duration + ramp``, where u = ``duration``: every segment starts and ends at rest."""
+    if ramp <= 0:
+        return np.minimum(t, duration), np.ones_like(t)
+    end = duration + ramp
+    up, down = t < ramp, t > duration
+    u = np.where(up, t ** 2 / (2 * ramp), t - ramp / 2)
+    u = np.where(down, duration - (end - t) ** 2 / (2 * ramp), u)
+    rate = np.where(up, t / ramp, np.where(down, (end - t) / ramp, 1.0))
+    return u, rate
+
+
 def _targets(seg: PlannedSegment, vmax: np.ndarray, config: PhysicsConfig):
     """Every control step's robot target along ``seg``: (step numbers k (m,), q (m, dof), qd (m, dof),
     planned tool position (m, 3) or None, planned object q (m,) or None), and the step count.
 
-    The segment is time-parametrised by :func:`timed_waypoints`; targets are linear interpolations between
-    waypoints at t = k * time_step for the steps k that send a command (every ``control_every``-th, from 1).
+    The segment is time-parametrised by :func:`timed_waypoints`, then ramped (:func:`_ramped`, over
+    ``ramp_time``: a real arm's acceleration is bounded, and a part grasped and jerked to speed in one step
+    would take an impulse no gripper transmits); targets are linear interpolations between waypoints at
+    the ramped path time of t = k * time_step for the steps k that send a command (every
+    ``control_every``-th, from 1).
     """
     times = timed_waypoints(seg.q, vmax, config.time_step)
-    n_steps = int(np.ceil(times[-1] / config.time_step))
+    ramp = min(config.ramp_time, times[-1])
+    n_steps = int(np.ceil((times[-1] + ramp) / config.time_step))
     k = np.arange(1, n_steps + 1, config.control_every)
     tool = seg.T_world_tool[:, :3, 3] if seg.T_world_tool is not None else None
     if len(times) == 1:
         q = np.repeat(seg.q[:1], len(k), axis=0)
         qd = np.zeros_like(q)
         return k, q, qd, None, None, n_steps
-    tk = np.minimum(k * config.time_step, times[-1])
+    tk, rate = _ramped(np.minimum(k * config.time_step, times[-1] + ramp), times[-1], ramp)
     j = np.clip(np.searchsorted(times, tk, side="right") - 1, 0, len(times) - 2)
     span = times[j + 1] - times[j]
     a = ((tk - times[j]) / span)[:, None]
     q = (1 - a) * seg.q[j] + a * seg.q[j + 1]
-    qd = (seg.q[j + 1] - seg.q[j]) / span[:, None]
+    qd = (seg.q[j + 1] - seg.q[j]) / span[:, None] * rate[:, None]
     tool_k = (1 - a) * tool[j] + a * tool[j + 1] if tool is not None else None
     obj_k = ((1 - a[:, 0]) * seg.object_q[j] + a[:, 0] * seg.object_q[j + 1]) if seg.object_q is not None else None
     return k, q, qd, tool_k, obj_k, n_steps

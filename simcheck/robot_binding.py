@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from planners.robot import GripperModel
 from simcheck.errors import RobotBindingError
 
 __all__ = ["SimRobot", "sim_robot_from_spec"]
@@ -33,6 +34,7 @@ class SimRobot:
         gripper_links: links allowed to touch the handle (hand, fingers, tool).
         finger_links: links that must touch the handle before the grasp is made.
         base_links: links allowed to touch the floor (the mobile base).
+        gripper: what the gripper holds (``planners.robot.GripperModel``): the grasp's force bound.
     """
 
     urdf: Path
@@ -45,6 +47,7 @@ class SimRobot:
     finger_links: tuple[str, ...]
     base_links: tuple[str, ...] = ()
     finger_force: float = 40.0
+    gripper: GripperModel = GripperModel()
 
     def __post_init__(self) -> None:
         if not Path(self.urdf).is_file():
@@ -71,7 +74,7 @@ def sim_robot_from_spec(spec) -> SimRobot:
     Reads ``urdf``, ``joint_names`` (else base + arm joints), ``finger_joints``, ``finger_open`` /
     ``finger_closed`` (one value for all fingers, or one each), ``tool_frame``, ``gripper_links``,
     ``finger_links`` (default: the gripper links named "*finger*"), ``base_link(s)`` and
-    ``max_finger_force``; a :class:`SimRobot` is returned unchanged.
+    ``max_finger_force`` and ``gripper`` (default :class:`GripperModel`); a :class:`SimRobot` is returned unchanged.
 
     Raises:
         RobotBindingError: a required field is missing (names it).
@@ -103,7 +106,8 @@ def sim_robot_from_spec(spec) -> SimRobot:
                     finger_closed=f_closed, tool_link=str(tool),
                     gripper_links=tuple(gripper_links) or (str(tool),) + finger_links,
                     finger_links=finger_links, base_links=_base_links(spec),
-                    finger_force=float(_first(spec, ("finger_force", "max_finger_force", "gripper_force"), 40.0)))
+                    finger_force=float(_first(spec, ("finger_force", "max_finger_force", "gripper_force"), 40.0)),
+                    gripper=_first(spec, ("gripper",), GripperModel()))
 
 
 def _base_links(spec) -> tuple[str, ...]:

@@ -9,7 +9,7 @@ Sample ``i`` is taken at time ``t[i]`` (seconds since the task started). World f
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass, fields
+from dataclasses import MISSING, dataclass, fields
 from pathlib import Path
 
 import numpy as np
@@ -22,7 +22,7 @@ __all__ = ["Rollout", "ROLLOUT_FORMAT"]
 ROLLOUT_FORMAT = "partscene.rollout/1"
 
 _META = ("joint", "moving_link", "handle_link", "robot_joint_names", "segment_names", "gripper_links",
-         "requested_amount", "object_q0", "grasp_note", "time_step")
+         "requested_amount", "object_q0", "grasp_note", "time_step", "holding_force", "opening_type")
 
 
 @dataclass(frozen=True)
@@ -50,7 +50,16 @@ class Rollout:
         planned_tool_pos: (n, 3) planned tool position at that instant (NaN where the plan has none).
         planned_object_q: (n,) planned task joint value (NaN where the plan has none).
         link_speed, link_angular_speed: (n,) speed of ``moving_link``, m/s and rad/s.
-        grasp_active: (n,) bool, the grasp attachment exists.  grasp_force: (n,) its force, N.
+        grasp_active: (n,) bool, the grasp attachment exists.
+        grasp_force: (n,) what the grasp transmitted: the largest running mean (over
+            ``PhysicsConfig.grasp_force_window``) of the norm of its force since the previous sample, N;
+            0 while not grasped.
+        holding_force: the force the robot's gripper holds, N (its ``GripperModel``).
+        grasp_turn: (n,) angle, rad, by which the handle has turned in the fingers since the grasp.
+        opening_type, opening_axis: how the opening is measured: "prismatic" (the handle's displacement
+            along ``opening_axis``, m) or "revolute" (its rotation about ``opening_axis``, rad), the
+            direction in which the PLANNED (estimated) joint opens, world frame, (3,) unit; "" and NaN:
+            the executed joint's own value is used.
         finger_q: (n, n_fingers).  finger_contacts: (n,) int finger links touching the handle.
         contact_sample, contact_robot_link, contact_scene_link, contact_force, contact_depth: (m,) robot
             contacts -- per sample and pair, the largest normal force (N) and penetration (m, >= 0) over
@@ -97,12 +106,21 @@ class Rollout:
     object_contact_link: np.ndarray
     object_contact_force: np.ndarray
     wall_time: float = 0.0
+    grasp_turn: np.ndarray | None = None
+    opening_type: str = ""
+    opening_axis: np.ndarray | None = None
+    holding_force: float = float("nan")
 
     def __post_init__(self) -> None:
         n = len(self.t)
+        for name in ("grasp_turn",):          # rollouts recorded before the gripper model
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, np.zeros(n))
+        if self.opening_axis is None:
+            object.__setattr__(self, "opening_axis", np.full(3, np.nan))
         for name in ("segment", "robot_q", "object_q", "object_qd", "T_world_handle", "tool_pos", "grasp_point",
                      "planned_tool_pos", "planned_object_q", "link_speed", "link_angular_speed", "grasp_active",
-                     "grasp_force", "finger_q", "finger_contacts"):
+                     "grasp_force", "grasp_turn", "finger_q", "finger_contacts"):
             if len(getattr(self, name)) != n:
                 raise RolloutFormatError(f"rollout of joint {self.joint!r}: {name} has {len(getattr(self, name))} "
                                          f"samples, t has {n}")
@@ -154,10 +172,10 @@ class Rollout:
                     if f.name in meta:
                         v = meta[f.name]
                         kwargs[f.name] = tuple(v) if isinstance(v, list) else v
-                    else:
-                        if f.name not in data:
-                            raise RolloutFormatError(f"{path}: array {f.name!r} missing")
+                    elif f.name in data:
                         kwargs[f.name] = data[f.name]
+                    elif f.default is MISSING:
+                        raise RolloutFormatError(f"{path}: array {f.name!r} missing")
         except (OSError, KeyError, ValueError) as exc:
             if isinstance(exc, RolloutFormatError):
                 raise

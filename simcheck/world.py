@@ -35,6 +35,7 @@ import numpy as np
 
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
 from simcheck.errors import RobotBindingError, SceneLoadError, TaskSpecError
+from simcheck.grasp import FingerContacts
 from simcheck.robot_binding import SimRobot
 
 
@@ -418,11 +419,33 @@ class World:
         self._forces = [max(self._robot_joints[n].max_force, 1.0) for n in robot.joint_names]
         self._finger_idx = {self._robot_links[n] for n in robot.finger_links}
         self._base_idx = {self._robot_links[n] for n in robot.base_links} | {-1}
+        self._finger_closing = self._finger_closing_directions(body, robot)
         for link in self._base_idx:
             # a mobile base stands on the floor: those contacts are never reported (robot_contacts) and
             # only add friction rows for the base motors to fight every step
             pb.setCollisionFilterPair(body, self.floor, link, -1, 0, physicsClientId=self.client)
         return body
+
+    def _finger_closing_directions(self, body: int, robot: SimRobot) -> dict[str, np.ndarray]:
+        """finger link name -> (3,) unit direction, in the tool frame, in which the finger moves when the
+        gripper closes (its link origin from fully open to fully closed, the arm at its loaded pose)."""
+        c, tool = self.client, self._robot_links[robot.tool_link]
+        at = {}
+        for fingers in (robot.finger_open, robot.finger_closed):
+            pb.resetJointStatesMultiDof(body, self._f_idx, [[v] for v in fingers], physicsClientId=c)
+            T_tool = self._link_pose(body, tool)
+            for name in robot.finger_links:
+                p = self._link_pose(body, self._robot_links[name])[:3, 3]
+                at.setdefault(name, []).append(T_tool[:3, :3].T @ (p - T_tool[:3, 3]))
+        pb.resetJointStatesMultiDof(body, self._f_idx, [[v] for v in robot.finger_open], physicsClientId=c)
+        out = {}
+        for name, (p_open, p_closed) in at.items():
+            d = p_closed - p_open
+            if np.linalg.norm(d) < 1e-6:
+                raise RobotBindingError(f"robot {robot.urdf}: finger link {name!r} does not move when the gripper "
+                                        f"closes (finger_open {robot.finger_open}, finger_closed {robot.finger_closed})")
+            out[name] = d / np.linalg.norm(d)
+        return out
 
     def _index(self, body: int) -> tuple[dict[str, JointInfo], dict[str, int]]:
         c = self.client
@@ -629,17 +652,38 @@ class World:
         return sum(bool(pb.getClosestPoints(self.robot, body, within, linkIndexA=f, linkIndexB=idx,
                                             physicsClientId=self.client)) for f in self._finger_idx)
 
+    def finger_contacts(self, scene_link: str) -> tuple[FingerContacts, ...]:
+        """Each finger link's contact points with scene link ``scene_link`` from the last step (PyBullet's
+        contact manifold: positions on the scene link, normals toward the finger, signed distances),
+        with the finger's closing direction in the world and its travel left to fully closed."""
+        body, idx = self._scene_link_index(scene_link)
+        R_tool = self.robot_link_pose(self.robot_spec.tool_link)[:3, :3]
+        q = self.finger_q()
+        left = np.abs(q - np.asarray(self.robot_spec.finger_closed, dtype=float))
+        out = []
+        joints = self.robot_spec.finger_joints
+        for k, name in enumerate(self.robot_spec.finger_links):
+            cps = pb.getContactPoints(self.robot, body, self._robot_links[name], idx, physicsClientId=self.client)
+            joint = next((i for i, j in enumerate(joints) if self._robot_joints[j].child_link == name),
+                         min(k, len(left) - 1))
+            out.append(FingerContacts(
+                finger=name, positions=np.array([cp[6] for cp in cps], dtype=float).reshape(-1, 3),
+                normals=np.array([cp[7] for cp in cps], dtype=float).reshape(-1, 3),
+                distances=np.array([cp[8] for cp in cps], dtype=float),
+                closing=R_tool @ self._finger_closing[name], travel_left=float(left[joint]) if len(left) else 0.0))
+        return tuple(out)
+
     def is_gripper_link(self, link: str) -> bool:
         return self._robot_links.get(link) in self._gripper_idx
 
     # ------------------------------------------------------------------ grasp attachment
     def attach(self, scene_link: str, max_force: float) -> None:
-        """Fix the robot's tool link to ``scene_link`` at their current relative pose, force-bounded (N).
+        """Join the robot's tool frame origin to the point of ``scene_link`` where it is now (a point-to-point
+        constraint: force, no torque), each of its three rows capped at ``max_force`` N.
 
         While attached, the fingers hold their current opening and do not collide with ``scene_link``:
         the attachment is the grasp, and finger contacts squeezing the same link made the solver fight
-        itself (measured on the 4 door tasks of kitchen seed 0, best of 3 runs: minimum real-time factor
-        20.9x -> 22.6x, slip and path deviation within 1 mm of before). :meth:`detach` restores both."""
+        itself. :meth:`detach` restores both."""
         self.detach()
         T_w_tool = self.robot_link_pose(self.robot_spec.tool_link)
         T_w_obj = self.scene_link_pose(scene_link)
@@ -653,7 +697,7 @@ class World:
         T_comtool_frame = np.linalg.inv(T_tool_com)
         T_comobj_frame = np.linalg.inv(T_obj_com) @ np.linalg.inv(T_tool_obj)
         self._grasp = pb.createConstraint(
-            self.robot, tool_idx, obj_body, obj_idx, pb.JOINT_FIXED, [0, 0, 0],
+            self.robot, tool_idx, obj_body, obj_idx, pb.JOINT_POINT2POINT, [0, 0, 0],
             parentFramePosition=T_comtool_frame[:3, 3].tolist(),
             childFramePosition=T_comobj_frame[:3, 3].tolist(),
             parentFrameOrientation=_quat_xyzw_from_R(T_comtool_frame[:3, :3]),
@@ -687,7 +731,8 @@ class World:
         return self._grasp is not None
 
     def grasp_force(self) -> float:
-        """Norm of the force (N) the grasp attachment applied in the last step (0 when detached)."""
+        """Norm of the force (N) the grasp attachment applied in the last step (0 when detached): the
+        whole force of the point-to-point constraint's three rows."""
         if self._grasp is None:
             return 0.0
         f = pb.getConstraintState(self._grasp, physicsClientId=self.client)
