@@ -201,7 +201,8 @@ class Session:
                 camera.frame()
 
         t, c0 = time.perf_counter(), time.process_time()
-        rollout = execute_task(w, plan, self.physics, requested_amount=requested, opening_type="revolute" if est.type == "continuous" else est.type,
+        rollout = execute_task(w, plan, self.physics, requested_amount=requested,
+                               opening_type="revolute" if est.type == "continuous" else est.type,
                                opening_axis=est.axis_world,
                                frame_callback=camera.snap if camera else None,
                                sample_callback=on_sample if camera is not None and video else None)
