@@ -23,11 +23,12 @@ from typing import NamedTuple
 
 import numpy as np
 
+from scenes.description import FRONT_CATEGORIES
 from scenes.outcome import Outcome
 
 __all__ = ["main"]
 
-CATEGORIES = ("cabinet", "microwave", "refrigerator")
+CATEGORIES = FRONT_CATEGORIES
 WRONG_KINDS = ("axis30", "wrong_hinge_side", "revolute_as_prismatic", "wider_limits", "blocked_swing")
 
 

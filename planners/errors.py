@@ -9,15 +9,17 @@ named as a drawer, a moving part without a handle). Every message names the file
 
 from __future__ import annotations
 
+from scenes.description import InputError, PartsceneError
+
 __all__ = ["PlannerError", "PlannerInputError", "SceneURDFError", "TaskJointError", "HandleNotFoundError",
            "RobotDescriptionError"]
 
 
-class PlannerError(Exception):
+class PlannerError(PartsceneError):
     """Base class of every exception raised by :mod:`planners`."""
 
 
-class PlannerInputError(PlannerError, ValueError):
+class PlannerInputError(PlannerError, InputError):
     """The input (scene URDF, task, robot description) cannot be used; the message says why."""
 
 

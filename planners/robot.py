@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from scenes.atomic_write import write_text_atomic
+from scenes.description import write_text_atomic
 
 __all__ = ["RobotSpec", "GripperModel", "default_robot", "robot_cache_dir", "PANDA_HOME"]
 

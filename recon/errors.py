@@ -1,7 +1,7 @@
 """The errors ``recon`` raises. Every message names the file, object, part or joint at fault.
 
-    ReconError          base of everything recon raises on purpose
-    ├── ScanError       the scan or labels file cannot be used (missing, malformed, NaN, empty, units)
+    ReconError          base of everything recon raises on purpose (a scenes.description.PartsceneError)
+    ├── ScanError       the scan or labels file cannot be used (an InputError: missing, malformed, NaN, ...)
     └── ReconstructionError  a stage could not produce a valid model (names object / part / joint)
 
 Expected, recoverable problems (a part with too few points, an unknown label, a part that touches
@@ -10,14 +10,16 @@ nothing) are not errors: they are logged and collected in ``Reconstruction.warni
 
 from __future__ import annotations
 
+from scenes.description import InputError, PartsceneError
+
 __all__ = ["ReconError", "ScanError", "ReconstructionError"]
 
 
-class ReconError(Exception):
+class ReconError(PartsceneError):
     """Base class of the errors raised by :mod:`recon`."""
 
 
-class ScanError(ReconError, ValueError):
+class ScanError(ReconError, InputError):
     """The scan (PLY / NPZ) or its labels JSON is unusable; the message names the file and field."""
 
 

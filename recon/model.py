@@ -36,7 +36,7 @@ class JointType(str, Enum):
 class PartFit:
     """One part replaced by its best-aligned primitive (Eq. 3).
 
-    part_id, label : from labels.json; link : URDF link name (scenes.naming.link_name)
+    part_id, label : from labels.json; link : URDF link name (scenes.description.link_name)
     primitive : the winning primitive (type, size, T_world_part)
     score : float, metres, the Eq. 3 score of the winner (lower is better)
     candidate_scores : {candidate name: score} of every candidate tried
@@ -116,7 +116,7 @@ class JointUncertainty:
 class JointEstimate:
     """A joint of the part tree, in the world frame at the scanned (closed) state.
 
-    name : URDF joint name (scenes.naming.joint_name of the child)
+    name : URDF joint name (scenes.description.joint_name of the child)
     type : JointType
     parent_part_id : None for the object's root (its parent is the ``world`` link)
     axis : (3,) unit, world frame; a positive joint value opens (zeros for fixed joints)
@@ -157,7 +157,7 @@ class JointEstimate:
 class ObjectReconstruction:
     """One object rebuilt from its parts.
 
-    id, category, name : from labels.json; name = scenes.naming.object_name
+    id, category, name : from labels.json; name = scenes.description.object_name
     root_part_id : the base part (fixed to the world)
     parts : PartFit per reconstructed part (refined poses)
     contacts : every directed edge satisfying Eq. 1 (the graph the tree was chosen from)

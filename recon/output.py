@@ -8,7 +8,7 @@ from pathlib import Path
 from recon.graph_json import graph_json_string
 from recon.model import Reconstruction
 from recon.scene_urdf import urdf_string
-from scenes.atomic_write import write_bytes_atomic
+from scenes.description import write_bytes_atomic
 
 __all__ = ["write_reconstruction"]
 

@@ -47,7 +47,7 @@ from recon.scan import ObjectPoints, Scan, read_scan
 from recon.scene_graph import (object_frame, object_front, proximal_relations, resting_on,
                                support_relations, upright_correction)
 from recon.walls import walls_from_background
-from scenes.naming import joint_name, link_name, object_name
+from scenes.description import joint_name, link_name, object_name
 
 __all__ = ["reconstruct", "reconstruct_scan", "ObjectState", "FittedPart"]
 

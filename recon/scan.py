@@ -18,16 +18,13 @@ import numpy as np
 
 from recon.config import ReconConfig
 from recon.errors import ScanError
+from scenes.description import KNOWN_CATEGORIES, KNOWN_LABELS
 
 __all__ = ["KNOWN_CATEGORIES", "KNOWN_LABELS", "PartPoints", "ObjectPoints", "Scan", "read_scan",
            "scan_from_arrays"]
 
 log = logging.getLogger(__name__)
 
-KNOWN_CATEGORIES = frozenset({"cabinet", "microwave", "refrigerator", "table", "chair", "bed",
-                              "oven", "dishwasher", "wardrobe", "desk", "sofa", "shelf"})
-KNOWN_LABELS = frozenset({"body", "drawer", "door", "handle", "top", "leg", "seat", "back", "arm",
-                          "frame", "headboard", "mattress", "shelf", "knob", "base"})
 
 
 @dataclass(frozen=True, eq=False)

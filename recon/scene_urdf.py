@@ -15,7 +15,7 @@ with the parallel-axis theorem), in the link frame. Parts that move (drawers, do
 hangs from them) get collision shapes shrunk by ``collision_clearance`` so they do not start in
 contact with their body or siblings.
 
-Every visual carries a material coloured by its part label (``LABEL_RGBA`` of scenes' truth.urdf;
+Every visual carries a material coloured by its part label (``scenes.description.LABEL_RGBA``;
 walls ``wall``). Numbers are written rounded so that the same reconstruction gives the same bytes:
 lengths and angles (origins, sizes, axes, limits) to ``LENGTH_DECIMALS`` decimals, masses and
 inertias to ``SIGNIFICANT_DIGITS`` significant digits (an inertia term relative to the largest
@@ -29,8 +29,7 @@ import yourdfpy
 
 from recon.model import JointType, Reconstruction
 from recon.primitive import Primitive, PrimitiveKind
-from scenes.naming import WORLD_LINK
-from scenes.truth_urdf import LABEL_RGBA
+from scenes.description import LABEL_RGBA, WORLD_LINK
 
 __all__ = ["urdf_robot", "urdf_string", "link_frames", "compound_inertial", "label_rgba",
            "LENGTH_DECIMALS", "SIGNIFICANT_DIGITS"]

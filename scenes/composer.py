@@ -19,7 +19,7 @@ from .config import DEFAULT_COMPOSER, ComposerConfig
 from .errors import PlacementError
 from .footprints import footprint, keepout, room_polygon
 from .model import ArticulatedObject, Scene, Wall
-from .poses import pose, transform_points
+from .description import pose, transform_points
 
 __all__ = ["WALLS", "RoomComposer"]
 

@@ -1,15 +1,18 @@
-"""The exceptions ``scenes`` raises. Each message names the scene, object, part, joint or argument."""
+"""The exceptions ``scenes`` raises (under :class:`scenes.description.PartsceneError`). Each message names
+the scene, object, part, joint or argument."""
 
 from __future__ import annotations
+
+from .description import InputError, PartsceneError
 
 __all__ = ["ScenesError", "SceneSpecError", "PlacementError", "ScanError"]
 
 
-class ScenesError(Exception):
+class ScenesError(PartsceneError):
     """Base of every error raised by :mod:`scenes`."""
 
 
-class SceneSpecError(ScenesError, ValueError):
+class SceneSpecError(ScenesError, InputError):
     """A bad argument: unknown scene/category/preset, a negative size, an invalid seed, ..."""
 
 

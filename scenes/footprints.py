@@ -17,7 +17,7 @@ from shapely.geometry import MultiPoint, Polygon, box
 from shapely.ops import unary_union
 
 from .model import ArticulatedObject
-from .poses import transform_points
+from .description import transform_points
 
 __all__ = ["footprint", "sweep", "clearance", "handle_reach", "keepout", "subtree_parts", "room_polygon"]
 

@@ -18,7 +18,7 @@ from enum import Enum
 
 import numpy as np
 
-from .naming import joint_name, link_name, object_name
+from .description import joint_name, link_name, object_name
 
 __all__ = ["ShapeType", "JointType", "Shape", "Part", "Joint", "ArticulatedObject", "Wall", "Scene"]
 

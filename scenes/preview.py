@@ -6,11 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .atomic_write import write_with_atomic
+from .description import DEFAULT_RGBA, LABEL_RGBA, transform_points, write_with_atomic
 from .model import Scene
-from .poses import transform_points
 from .scanner.scan import Scan
-from .truth_urdf import LABEL_RGBA
 
 __all__ = ["write_room_preview", "write_scan_preview", "MAX_PREVIEW_POINTS"]
 
@@ -48,7 +46,7 @@ def write_room_preview(scene: Scene, path: str | Path) -> Path:
     for o in scene.objects:
         for p in o.parts:
             T = o.T_world_object @ p.T_object_part
-            rgb = LABEL_RGBA.get(p.label, (0.6, 0.6, 0.6, 1))[:3]
+            rgb = LABEL_RGBA.get(p.label, DEFAULT_RGBA)[:3]
             for s in p.shapes:
                 c = transform_points(T, s.corners())
                 ax.fill(*c[[0, 2, 6, 4]][:, :2].T, color=rgb, ec="k", lw=0.3, alpha=0.7)

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .atomic_write import write_bytes_atomic, write_text_atomic
+from .description import write_bytes_atomic, write_text_atomic
 from .errors import SceneSpecError
 from .scanner.scan import Scan
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from .model import Part, Shape, ShapeType
-from .poses import transform_points
+from .description import transform_points
 
 __all__ = ["shape_sdf", "part_surface_distance"]
 

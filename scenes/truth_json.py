@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
 
-from .atomic_write import write_text_atomic
+from .description import TRUTH_FORMAT, DescriptionError, check_truth_format, read_truth_doc, write_truth_doc
 from .config import DEFAULT_GENERATOR
 from .errors import SceneSpecError
 from .validate import validate_scene
@@ -16,7 +15,6 @@ from .model import ArticulatedObject, Joint, JointType, Part, Scene, Shape, Shap
 __all__ = ["TRUTH_FORMAT", "truth_dict_from_scene", "write_truth_json", "scene_from_truth_dict",
            "read_truth_json"]
 
-TRUTH_FORMAT = "partscene.truth/1"
 
 
 def _m(T: np.ndarray) -> list[list[float]]:
@@ -66,7 +64,7 @@ def truth_dict_from_scene(scene: Scene) -> dict:
 
 def write_truth_json(scene: Scene, path: str | Path) -> Path:
     """Write ``truth.json`` atomically; returns the path."""
-    return write_text_atomic(path, json.dumps(truth_dict_from_scene(scene), indent=1) + "\n")
+    return write_truth_doc(truth_dict_from_scene(scene), path)
 
 
 def _shape_from(d: dict) -> Shape:
@@ -79,9 +77,10 @@ def _shape_from(d: dict) -> Shape:
 
 def scene_from_truth_dict(d: dict, source: str = "truth.json") -> Scene:
     """Inverse of :func:`truth_dict_from_scene` (joint axes/origins back to object frames)."""
-    if not isinstance(d, dict) or d.get("format") != TRUTH_FORMAT:
-        got = d.get("format") if isinstance(d, dict) else type(d).__name__
-        raise SceneSpecError(f"{source}: format is {got!r}, expected {TRUTH_FORMAT!r}")
+    try:
+        check_truth_format(d, source)
+    except DescriptionError as e:
+        raise SceneSpecError(str(e)) from e
     try:
         return _scene_from(d)
     except (KeyError, TypeError, ValueError) as e:
@@ -115,9 +114,9 @@ def _scene_from(d: dict) -> Scene:
 def read_truth_json(path: str | Path) -> Scene:
     path = Path(path)
     try:
-        d = json.loads(path.read_text())
-    except (OSError, json.JSONDecodeError) as e:
-        raise SceneSpecError(f"{path}: cannot read truth JSON: {e}") from e
+        d = read_truth_doc(path)
+    except DescriptionError as e:
+        raise SceneSpecError(str(e)) from e
     scene = scene_from_truth_dict(d, str(path))
     validate_scene(scene)
     return scene

@@ -13,23 +13,13 @@ from pathlib import Path
 
 import numpy as np
 
-from .atomic_write import write_text_atomic
+from .description import DEFAULT_RGBA, LABEL_RGBA, WORLD_LINK, write_text_atomic, xyz_rpy_from_T
 from .inertia import part_mass_properties
 from .model import ArticulatedObject, Scene, ShapeType
-from .naming import WORLD_LINK
-from .poses import xyz_rpy_from_T
 
-__all__ = ["urdf_from_scene", "write_truth_urdf", "WALL_DENSITY", "LABEL_RGBA"]
+__all__ = ["urdf_from_scene", "write_truth_urdf", "WALL_DENSITY"]
 
 WALL_DENSITY = 1500.0  # kg/m^3, plaster board/brick-ish; walls are fixed, the mass only keeps loaders quiet
-
-LABEL_RGBA = {
-    "body": (0.75, 0.62, 0.45, 1), "drawer": (0.55, 0.75, 0.90, 1), "door": (0.90, 0.60, 0.45, 1),
-    "handle": (0.25, 0.25, 0.28, 1), "top": (0.70, 0.55, 0.35, 1), "leg": (0.45, 0.33, 0.22, 1),
-    "seat": (0.65, 0.45, 0.30, 1), "back": (0.55, 0.40, 0.30, 1), "arm": (0.50, 0.36, 0.26, 1),
-    "frame": (0.55, 0.45, 0.35, 1), "headboard": (0.45, 0.35, 0.30, 1),
-    "mattress": (0.92, 0.92, 0.88, 1), "shelf": (0.80, 0.75, 0.65, 1), "wall": (0.85, 0.85, 0.82, 1),
-}
 
 
 def _f(x: float) -> str:
@@ -67,7 +57,7 @@ def _shape_elements(link: ET.Element, name: str, label: str, shapes) -> None:
         _origin(vis, s.T_part_shape)
         _geometry(vis, s.type, s.size)
         mat = ET.SubElement(vis, "material", name=f"mat_{label}")
-        ET.SubElement(mat, "color", rgba=_vec(LABEL_RGBA.get(label, (0.6, 0.6, 0.6, 1))))
+        ET.SubElement(mat, "color", rgba=_vec(LABEL_RGBA.get(label, DEFAULT_RGBA)))
         col = ET.SubElement(link, "collision", name=f"{name}_c{k}")
         _origin(col, s.T_part_shape)
         _geometry(col, s.type, s.size)

@@ -4,14 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from .description import PART_LABELS, SCENE_CATEGORIES
 from .errors import SceneSpecError
 from .model import ArticulatedObject, JointType, Scene
 
 __all__ = ["PART_LABELS", "CATEGORIES", "validate_object", "validate_scene"]
 
-PART_LABELS = frozenset({"body", "drawer", "door", "handle", "top", "leg", "seat", "back", "arm", "frame",
-                         "headboard", "mattress", "shelf"})
-CATEGORIES = frozenset({"cabinet", "microwave", "refrigerator", "table", "chair", "bed"})
+CATEGORIES = SCENE_CATEGORIES
 
 
 def validate_object(obj: ArticulatedObject, where: str = "") -> None:

@@ -25,7 +25,7 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from scenes.atomic_write import write_text_atomic
+from scenes.description import write_text_atomic
 from scenes.outcome import Outcome, exit_code
 from simcheck.criteria import CriterionResult
 from simcheck.errors import SimcheckInputError

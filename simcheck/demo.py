@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from scenes.atomic_write import write_text_atomic
+from scenes.description import write_text_atomic
 from scenes.outcome import Outcome
 from simcheck.report import DemoLayout, render_report
 

@@ -9,15 +9,17 @@ exit code 2.
 
 from __future__ import annotations
 
+from scenes.description import InputError, PartsceneError
+
 __all__ = ["SimcheckError", "SimcheckInputError", "SceneLoadError", "TaskSpecError", "RobotBindingError",
            "ScenarioError", "RolloutFormatError"]
 
 
-class SimcheckError(Exception):
+class SimcheckError(PartsceneError):
     """Base class of every exception raised by :mod:`simcheck`."""
 
 
-class SimcheckInputError(SimcheckError, ValueError):
+class SimcheckInputError(SimcheckError, InputError):
     """The input (scene URDF, task, robot, scenario) cannot be used; the message says why."""
 
 

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from scenes.atomic_write import write_with_atomic
+from scenes.description import write_with_atomic
 from simcheck.errors import RolloutFormatError
 
 __all__ = ["Rollout", "ROLLOUT_FORMAT"]

@@ -2,7 +2,7 @@
 
 import pytest
 
-from scenes.naming import joint_name, link_name, object_name, parse_link_name
+from scenes.description import joint_name, link_name, object_name, parse_link_name
 
 
 def test_names_follow_the_documented_pattern():

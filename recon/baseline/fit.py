@@ -38,7 +38,7 @@ from recon.baseline.templates import Template, TemplateLibrary, library_from_gen
 from recon.metrics.chamfer import distance_to_union_surface
 from recon.metrics.objects import ObjectEstimate
 from recon.scan import ObjectPoints, Scan
-from scenes.naming import joint_name
+from scenes.description import joint_name
 
 __all__ = ["BaselineConfig", "BaselineStatus", "BaselineObject", "BaselineResult", "fit_object",
            "reconstruct_object_level", "object_level_from_files"]

@@ -12,12 +12,14 @@ or test points at the datum to fix, never at a line deep inside numpy. They are 
 
 from __future__ import annotations
 
+from scenes.description import InputError
+
 from recon.errors import ReconError
 
 __all__ = ["MetricsError", "TruthFormatError", "EstimateError"]
 
 
-class MetricsError(ReconError, ValueError):
+class MetricsError(ReconError, InputError):
     """Base class of every error raised by :mod:`recon.metrics`."""
 
 

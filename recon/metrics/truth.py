@@ -6,7 +6,6 @@ problem raises :class:`~recon.metrics.errors.TruthFormatError` naming the file, 
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
@@ -16,10 +15,10 @@ import numpy as np
 from recon.metrics.errors import TruthFormatError
 from recon.model import JointEstimate, JointType
 from recon.primitive import Primitive, volume_weighted_centre
+from scenes.description import TRUTH_FORMAT, DescriptionError, check_truth_format, read_truth_doc
 
 __all__ = ["TRUTH_FORMAT", "TruthPart", "TruthObject", "TruthScene", "read_truth", "truth_from_dict"]
 
-TRUTH_FORMAT = "partscene.truth/1"
 
 
 @dataclass(frozen=True)
@@ -173,9 +172,11 @@ def _object(o: Mapping, where: str) -> TruthObject:
 
 def truth_from_dict(data: Mapping, source: str = "truth.json") -> TruthScene:
     """Parse a loaded truth.json document; ``source`` names it in error messages."""
-    fmt = data.get("format") if isinstance(data, Mapping) else None
-    if fmt != TRUTH_FORMAT:
-        raise TruthFormatError(f"{source}: format is {fmt!r}, expected {TRUTH_FORMAT!r}")
+    try:
+        check_truth_format(data if isinstance(data, dict) else dict(data) if isinstance(data, Mapping) else data,
+                           source)
+    except DescriptionError as exc:
+        raise TruthFormatError(str(exc)) from exc
     objects = tuple(_object(o, source) for o in _field(data, "objects", source))
     ids = [o.id for o in objects]
     if len(set(ids)) != len(ids):
@@ -187,9 +188,7 @@ def read_truth(path: str | Path) -> TruthScene:
     """Read and validate ``truth.json`` at ``path``."""
     path = Path(path)
     try:
-        data = json.loads(path.read_text())
-    except OSError as exc:
-        raise TruthFormatError(f"{path}: cannot read: {exc.strerror or exc}") from exc
-    except json.JSONDecodeError as exc:
-        raise TruthFormatError(f"{path}: not valid JSON ({exc.msg} at line {exc.lineno})") from exc
+        data = read_truth_doc(path)
+    except DescriptionError as exc:
+        raise TruthFormatError(str(exc)) from exc
     return truth_from_dict(data, str(path))

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..config import GeneratorConfig
 from ..model import ArticulatedObject, Joint, JointType, Part, Shape
-from ..poses import pose
+from ..description import pose
 
 __all__ = ["ObjectBuilder"]
 

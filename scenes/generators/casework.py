@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..poses import pose
+from ..description import pose
 from .builder import ObjectBuilder
 from .handles import add_handle
 

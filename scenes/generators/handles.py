@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..poses import pose
+from ..description import pose
 from .builder import ObjectBuilder
 
 __all__ = ["HANDLE_STYLES", "add_handle"]

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..errors import ScanError
 from ..model import Scene
-from ..truth_urdf import LABEL_RGBA
+from ..description import DEFAULT_RGBA, LABEL_RGBA
 from . import degrade
 from .camera_path import camera_poses
 from .meshes import scene_meshes
@@ -129,7 +129,7 @@ def scan_scene(scene: Scene, params: ScanParams, seed: int = 0) -> Scan:
     # colour lookup table indexed by part id + 1 (row 0 = background/wall)
     lut = np.tile(np.array(LABEL_RGBA["wall"], float), (max(label_of, default=0) + 2, 1))
     for part_id, label in label_of.items():
-        lut[part_id + 1] = LABEL_RGBA.get(label, (0.6, 0.6, 0.6, 1))
+        lut[part_id + 1] = LABEL_RGBA.get(label, DEFAULT_RGBA)
     colors = _colors(lut[pid + 1], nrm, dirs)
     log.info("scanned %s: %d frames, %d points", scene.name, len(poses), len(pts))
     return Scan(pts, nrm, colors, oid.astype(np.int32), pid.astype(np.int32), labels_from_scene(scene),

@@ -9,7 +9,7 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from scenes.atomic_write import write_bytes_atomic
+from scenes.description import write_bytes_atomic
 
 from ._errors import ReportError
 from ._render import render_report

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from scenes.naming import parse_link_name
+from scenes.description import parse_link_name
 
 from ._errors import ArtifactError
 

@@ -14,7 +14,7 @@ import time
 from collections.abc import Mapping
 from pathlib import Path
 
-from scenes.atomic_write import write_text_atomic
+from scenes.description import write_text_atomic
 from scenes.outcome import Outcome
 
 from ._errors import ArtifactError

@@ -7,6 +7,8 @@ from collections.abc import Sequence
 import numpy as np
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
+from scenes.description import FRONT_CATEGORIES
+
 from ._figure import colour_of_label, hconcat_pngs, new_figure, png_from_figure
 from ._primitives import Solid, mesh_from_solid
 
@@ -92,7 +94,7 @@ def view_azimuth(truth: dict | None) -> float:
         return VIEW_AZIM_DEG
     total = np.zeros(2)
     for o in truth.get("objects", []):
-        if o.get("category") not in _FRONT_CATEGORIES or "T_world_object" not in o or o.get("supported_by") is not None:
+        if o.get("category") not in FRONT_CATEGORIES or "T_world_object" not in o or o.get("supported_by") is not None:
             continue
         movable = sum(1 for j in o.get("joints", []) if j.get("type") in ("prismatic", "revolute"))
         total += (1 + movable) * np.asarray(o["T_world_object"], dtype=float)[:2, 0]
@@ -102,7 +104,6 @@ def view_azimuth(truth: dict | None) -> float:
 
 
 #: Objects whose front (drawers, doors) the views should face.
-_FRONT_CATEGORIES = ("cabinet", "microwave", "refrigerator")
 #: Turn of the view away from straight-on, degrees.
 SIDE_TURN_DEG = -30.0
 

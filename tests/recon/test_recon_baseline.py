@@ -12,7 +12,7 @@ from recon.metrics import ObjectEstimate, evaluate_scene, joint_summary, truth_f
 from recon.primitive import Primitive
 from recon.scan import ObjectPoints, PartPoints, Scan
 from scenes.generators import GENERATORS
-from scenes.naming import joint_name, link_name
+from scenes.description import joint_name, link_name
 
 
 def pose(yaw: float, xyz) -> np.ndarray:

@@ -12,7 +12,7 @@ from scenes.generators import CABINET_LAYOUTS, FRIDGE_LAYOUTS, GENERATORS, make_
 from scenes.inertia import part_mass_properties
 from scenes.model import JointType, Shape
 from scenes.overlap import part_overlaps
-from scenes.poses import pose
+from scenes.description import pose
 from scenes.validate import validate_object
 
 SEEDS = range(6)

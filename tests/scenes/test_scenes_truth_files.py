@@ -11,7 +11,7 @@ import pytest
 
 from scenes.builtin import build_scene
 from scenes.errors import SceneSpecError
-from scenes.naming import WORLD_LINK, joint_name, link_name, parse_link_name
+from scenes.description import WORLD_LINK, joint_name, link_name, parse_link_name
 from scenes.truth_json import TRUTH_FORMAT, read_truth_json, scene_from_truth_dict, truth_dict_from_scene
 
 
@@ -182,7 +182,7 @@ def test_every_generator_writes_loadable_urdf_for_many_seeds(tmp_path, capfd):
 
     from scenes.generators import GENERATORS
     from scenes.model import Scene
-    from scenes.poses import pose
+    from scenes.description import pose
     from scenes.truth_urdf import write_truth_urdf
 
     for seed in range(6):

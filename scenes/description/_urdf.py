@@ -1,0 +1,238 @@
+"""The only URDF reader and writer of partscene (on yourdfpy's schema dataclasses).
+
+:func:`read_urdf` checks what every engine needs and names the file and element when something is wrong:
+valid XML, one tree of links (no cycle, none cut off), known joint types, finite numbers, positive shape
+sizes, a non-zero axis and ``lower <= upper`` on movable joints, existing mesh files. It keeps limits,
+dynamics, inertials, visuals (with materials) and collisions; a relative mesh path is resolved against
+the file's folder (the model holds absolute paths or ``package://`` URIs).
+
+:func:`urdf_text` writes a model as pretty-printed URDF (PyBullet's tinyxml2 fails on yourdfpy's one-line
+output of a large scene); :func:`write_urdf` writes it atomically.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ._atomic import write_text_atomic
+from ._errors import DescriptionError
+from ._model import Dynamics, Inertial, Joint, JointType, Limit, Link, SceneModel
+from ._shape import Material, Shape, ShapeKind
+
+__all__ = ["read_urdf", "urdf_text", "urdf_xml", "write_urdf"]
+
+_TYPES = tuple(t.value for t in JointType)
+
+
+def _yourdfpy():
+    """yourdfpy, imported on first use (it imports trimesh: about a second)."""
+    import yourdfpy
+    return yourdfpy
+
+
+# ---------------------------------------------------------------------------------------------- reading
+def _finite(values, where: str) -> np.ndarray:
+    a = np.asarray(values, dtype=float).reshape(-1)
+    if not np.all(np.isfinite(a)):
+        raise DescriptionError(f"{where}: expected finite numbers, got {a.tolist()}")
+    return a
+
+
+def _pose(T, where: str) -> np.ndarray:
+    return np.eye(4) if T is None else _finite(T, where).reshape(4, 4)
+
+
+def _mesh_path(filename: str, base: Path, where: str) -> str:
+    path = filename[len("file://"):] if filename.startswith("file://") else filename
+    if path.startswith("package://"):
+        return path
+    p = Path(path) if Path(path).is_absolute() else (base / path)
+    if not p.is_file():
+        raise DescriptionError(f"{where} mesh {filename!r} not found (looked at {p})")
+    return str(p.resolve())
+
+
+def _shape(g, base: Path, where: str, material=None, name=None, origin=None) -> Shape:
+    T = _pose(origin, f"{where} origin")
+    if g.box is not None:
+        size = _finite(g.box.size, f"{where} box size")
+        if size.shape != (3,) or size.min() <= 0:
+            raise DescriptionError(f"{where} box has a non-positive size {tuple(size.tolist())}")
+        return Shape(ShapeKind.BOX, size, T, name, None, material)
+    if g.cylinder is not None:
+        r, ln = _finite([g.cylinder.radius, g.cylinder.length], f"{where} cylinder")
+        if r <= 0 or ln <= 0:
+            raise DescriptionError(f"{where} cylinder has a non-positive radius/length")
+        return Shape.cylinder(r, ln, T, name=name, material=material)
+    if g.sphere is not None:
+        r, = _finite([g.sphere.radius], f"{where} sphere")
+        if r <= 0:
+            raise DescriptionError(f"{where} sphere has a non-positive radius")
+        return Shape.sphere(r, T, name=name, material=material)
+    scale = np.ones(3) if g.mesh.scale is None else _finite(np.broadcast_to(g.mesh.scale, (3,)), f"{where} mesh scale")
+    return Shape(ShapeKind.MESH, scale, T, name, _mesh_path(g.mesh.filename or "", base, where), material)
+
+
+def _material(m) -> Material | None:
+    if m is None:
+        return None
+    rgba = None if m.color is None else tuple(float(x) for x in m.color.rgba)
+    return Material(m.name, rgba)
+
+
+def _link(el, base: Path, where: str) -> Link:
+    yourdfpy = _yourdfpy()
+    name = el.get("name")
+    for tag in ("visual", "collision"):
+        for k, sub in enumerate(el.findall(tag)):
+            g = sub.find("geometry")
+            if g is None or len(g) == 0:
+                raise DescriptionError(f"{where}: link {name!r} {tag} #{k} has no <geometry>")
+            if g[0].tag not in ("box", "cylinder", "sphere", "mesh"):
+                raise DescriptionError(f"{where}: link {name!r} has an unknown geometry <{g[0].tag}>")
+    try:
+        y = yourdfpy.URDF._parse_link(el)
+    except (KeyError, ValueError, TypeError, AttributeError, IndexError) as e:
+        raise DescriptionError(f"{where}: link {name!r} cannot be read ({type(e).__name__}: {e})") from e
+    at = f"{where}: link {name!r}"
+    inertial = None
+    if y.inertial is not None:
+        mass = 0.0 if y.inertial.mass is None else float(_finite([y.inertial.mass], f"{at} mass")[0])
+        inertia = np.zeros((3, 3)) if y.inertial.inertia is None else \
+            _finite(y.inertial.inertia, f"{at} inertia").reshape(3, 3)
+        inertial = Inertial(mass, _pose(y.inertial.origin, f"{at} inertial origin"), inertia)
+    visuals = tuple(_shape(v.geometry, base, f"{at} visual #{k}", _material(v.material), v.name, v.origin)
+                    for k, v in enumerate(y.visuals))
+    collisions = tuple(_shape(c.geometry, base, f"{at} collision #{k}", None, c.name, c.origin)
+                       for k, c in enumerate(y.collisions))
+    return Link(name, inertial, visuals, collisions)
+
+
+def _joint(el, where: str) -> Joint:
+    yourdfpy = _yourdfpy()
+    name, typ = el.get("name"), el.get("type")
+    at = f"{where}: joint {name!r}"
+    if typ not in _TYPES:
+        raise DescriptionError(f"{at} has unknown type {typ!r} (expected one of {', '.join(_TYPES)})")
+    for role in ("parent", "child"):
+        if el.find(role) is None or not el.find(role).get("link"):
+            raise DescriptionError(f"{at} has no <{role} link=...>")
+    try:
+        y = yourdfpy.URDF._parse_joint(el)
+    except (KeyError, ValueError, TypeError, AttributeError, IndexError) as e:
+        raise DescriptionError(f"{at} cannot be read ({type(e).__name__}: {e})") from e
+    T = _pose(y.origin, f"{at} origin")
+    axis = _finite(y.axis, f"{at} axis")
+    limit = dynamics = None
+    if y.limit is not None:
+        vals = [0.0 if v is None else v for v in (y.limit.lower, y.limit.upper, y.limit.effort, y.limit.velocity)]
+        limit = Limit(*(float(v) for v in _finite(vals, f"{at} limit")))
+    if y.dynamics is not None:
+        vals = [0.0 if v is None else float(v) for v in (y.dynamics.damping, y.dynamics.friction)]
+        dynamics = Dynamics(*(float(v) for v in _finite(vals, f"{at} dynamics")))
+    if typ != "fixed":
+        n = float(np.linalg.norm(axis))
+        if n < 1e-9:
+            raise DescriptionError(f"{at} has a zero axis")
+        axis = axis / n
+    if typ in ("prismatic", "revolute"):
+        if limit is None:
+            raise DescriptionError(f"{where}: {typ} joint {name!r} has no <limit>")
+        if limit.upper < limit.lower:
+            raise DescriptionError(f"{at} has upper limit {limit.upper:g} < lower {limit.lower:g}")
+    return Joint(name, JointType(typ), y.parent, y.child, T, axis, limit, dynamics)
+
+
+def read_urdf(path: str | Path) -> SceneModel:
+    """The :class:`SceneModel` of the URDF file at ``path``.
+
+    Raises:
+        DescriptionError: the file is missing, not XML, or malformed (names the file and the link/joint).
+    """
+    yourdfpy = _yourdfpy()
+    from lxml import etree
+    path = Path(path)
+    where = str(path)
+    if not path.is_file():
+        raise DescriptionError(f"{where}: URDF file not found")
+    try:
+        root = etree.parse(str(path), etree.XMLParser(remove_blank_text=True, remove_comments=True)).getroot()
+    except etree.XMLSyntaxError as e:
+        raise DescriptionError(f"{where}: not valid XML ({e})") from e
+    if root.tag != "robot":
+        raise DescriptionError(f"{where}: root element is <{root.tag}>, expected <robot>")
+    for tag in ("link", "joint"):
+        for el in root.findall(tag):
+            if not el.get("name"):
+                raise DescriptionError(f"{where}: a <{tag}> has no name")
+    links = [_link(el, path.parent, where) for el in root.findall("link")]
+    joints = [_joint(el, where) for el in root.findall("joint")]
+    materials = tuple(_material(yourdfpy.URDF._parse_material(m)) for m in root.findall("material"))
+    return SceneModel(root.get("name", ""), links, joints, materials, path)
+
+
+# ---------------------------------------------------------------------------------------------- writing
+def _geometry(s: Shape):
+    yourdfpy = _yourdfpy()
+    if s.kind is ShapeKind.BOX:
+        return yourdfpy.Geometry(box=yourdfpy.Box(size=np.asarray(s.size, float)))
+    if s.kind is ShapeKind.CYLINDER:
+        return yourdfpy.Geometry(cylinder=yourdfpy.Cylinder(radius=s.radius, length=s.length))
+    if s.kind is ShapeKind.SPHERE:
+        return yourdfpy.Geometry(sphere=yourdfpy.Sphere(radius=s.size[0] / 2.0))
+    return yourdfpy.Geometry(mesh=yourdfpy.Mesh(filename=s.mesh, scale=np.asarray(s.size, float)))
+
+
+def _y_material(m: Material | None):
+    yourdfpy = _yourdfpy()
+    if m is None:
+        return None
+    return yourdfpy.Material(name=m.name, color=None if m.rgba is None else yourdfpy.Color(rgba=np.asarray(m.rgba)))
+
+
+def _y_link(link: Link):
+    yourdfpy = _yourdfpy()
+    inertial = None
+    if link.inertial is not None:
+        inertial = yourdfpy.Inertial(origin=link.inertial.T_link_com, mass=float(link.inertial.mass),
+                                     inertia=np.asarray(link.inertial.inertia, float))
+    return yourdfpy.Link(
+        name=link.name, inertial=inertial,
+        visuals=[yourdfpy.Visual(name=s.name, origin=s.T_link_shape, geometry=_geometry(s),
+                                 material=_y_material(s.material)) for s in link.visuals],
+        collisions=[yourdfpy.Collision(name=s.name, origin=s.T_link_shape, geometry=_geometry(s))
+                    for s in link.collisions])
+
+
+def _y_joint(j: Joint):
+    yourdfpy = _yourdfpy()
+    limit = None if j.limit is None else yourdfpy.Limit(effort=j.limit.effort, velocity=j.limit.velocity,
+                                                         lower=j.limit.lower, upper=j.limit.upper)
+    dynamics = None if j.dynamics is None else yourdfpy.Dynamics(damping=j.dynamics.damping,
+                                                                  friction=j.dynamics.friction)
+    return yourdfpy.Joint(name=j.name, type=j.type.value, parent=j.parent, child=j.child, origin=j.T_parent_joint,
+                          axis=np.asarray(j.axis, float) if j.movable else None, limit=limit, dynamics=dynamics)
+
+
+def urdf_xml(model: SceneModel):
+    """The ``<robot>`` element (lxml) of ``model``: links, joints, then materials, in the model's order."""
+    yourdfpy = _yourdfpy()
+    robot = yourdfpy.Robot(name=model.name, links=[_y_link(l) for l in model.links.values()],
+                           joints=[_y_joint(j) for j in model.joints.values()],
+                           materials=[_y_material(m) for m in model.materials])
+    urdf = yourdfpy.URDF(robot=robot, build_scene_graph=False, load_meshes=False, filename_handler=lambda f: f)
+    return urdf.write_xml().getroot()
+
+
+def urdf_text(model: SceneModel, element=None) -> str:
+    """The URDF text of ``model`` (or of an ``element`` made by :func:`urdf_xml` and edited), pretty-printed."""
+    from lxml import etree
+    el = urdf_xml(model) if element is None else element
+    return etree.tostring(el, xml_declaration=True, encoding="UTF-8", pretty_print=True).decode()
+
+
+def write_urdf(model: SceneModel, path: str | Path) -> Path:
+    """Write ``model`` to ``path`` atomically; returns the path."""
+    return write_text_atomic(path, urdf_text(model))
