@@ -12,7 +12,7 @@ import sys
 ENGINES = ("pybullet", "pinocchio", "coal", "ompl", "open3d")
 #: modules of descriptions, artifacts, criteria and file formats: importable without any engine
 PURE = ("scenes", "recon", "planners", "simcheck",
-        "scenes.outcome", "scenes.naming", "scenes.model", "scenes.truth_json", "scenes.truth_urdf",
+        "scenes.outcome", "scenes.description", "scenes.model", "scenes.truth_json", "scenes.truth_urdf",
         "scenes.generators", "scenes.builtin",
         "recon.config", "recon.errors", "recon.primitive", "recon.model", "recon.graph_json", "recon.scan",
         "recon.contacts", "recon.part_tree", "recon.joints", "recon.scene_urdf", "recon.metrics",
@@ -21,7 +21,7 @@ PURE = ("scenes", "recon", "planners", "simcheck",
         "simcheck.tasks", "simcheck.criteria", "simcheck.certificate", "simcheck.config", "simcheck.errors",
         "simcheck.scene_joints", "simcheck.rollout", "simcheck.estimate_diff", "simcheck.scenario")
 #: modules that exist once the shared scene description has landed
-LATER = ("scenes.description",)
+LATER = ()
 CLIS = ("scenes.cli", "recon.cli", "simcheck.cli")
 #: libraries a command line must not import before it knows what to do (they take 0.1-1 s each)
 HEAVY = ENGINES + ("numpy", "scipy", "trimesh", "matplotlib", "yourdfpy", "networkx", "shapely")

@@ -10,28 +10,21 @@
 * ``truth.json``: :data:`TRUTH_FORMAT`, :func:`read_truth_doc`, :func:`write_truth_doc`.
 """
 
-from ._atomic import write_bytes_atomic, write_text_atomic, write_with_atomic
-from ._errors import DescriptionError, InputError, PartsceneError
-from ._model import Dynamics, Inertial, Joint, JointType, Limit, Link, SceneModel, joint_motion
-from ._naming import WORLD_LINK, joint_name, link_name, object_name, parse_link_name
-from ._poses import (ROTATION_ATOL, R_about, T_about, T_from_xyz_rpy, T_inverse, T_translation, check_pose,
-                     check_rotation, pose, rot_x, rot_y, rot_z, transform_points, xyz_rpy_from_T)
-from ._shape import Material, Shape, ShapeKind, mass_properties
-from ._truth import TRUTH_FORMAT, check_truth_format, read_truth_doc, write_truth_doc
-from ._urdf import read_urdf, urdf_text, urdf_xml, write_urdf
-from ._vocabulary import (DEFAULT_RGBA, FRONT_CATEGORIES, KNOWN_CATEGORIES, KNOWN_LABELS, LABEL_RGBA, PART_LABELS,
-                          SCENE_CATEGORIES)
+import lazy_loader
 
-__all__ = [
-    "PartsceneError", "InputError", "DescriptionError",
-    "write_text_atomic", "write_bytes_atomic", "write_with_atomic",
-    "WORLD_LINK", "object_name", "link_name", "joint_name", "parse_link_name",
-    "SCENE_CATEGORIES", "KNOWN_CATEGORIES", "FRONT_CATEGORIES", "PART_LABELS", "KNOWN_LABELS", "LABEL_RGBA",
-    "DEFAULT_RGBA",
-    "pose", "rot_x", "rot_y", "rot_z", "R_about", "T_about", "T_inverse", "T_translation", "T_from_xyz_rpy",
-    "xyz_rpy_from_T", "transform_points", "check_pose", "check_rotation", "ROTATION_ATOL",
-    "ShapeKind", "Material", "Shape", "mass_properties",
-    "JointType", "Limit", "Dynamics", "Inertial", "Link", "Joint", "SceneModel", "joint_motion",
-    "read_urdf", "urdf_text", "urdf_xml", "write_urdf",
-    "TRUTH_FORMAT", "check_truth_format", "read_truth_doc", "write_truth_doc",
-]
+# Names are imported on first use: the error classes and naming load no numpy, so a command line that
+# imports its package's errors stays quick.
+__getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
+    "_errors": ["PartsceneError", "InputError", "DescriptionError"],
+    "_atomic": ["write_text_atomic", "write_bytes_atomic", "write_with_atomic"],
+    "_naming": ["WORLD_LINK", "object_name", "link_name", "joint_name", "parse_link_name"],
+    "_vocabulary": ["SCENE_CATEGORIES", "KNOWN_CATEGORIES", "FRONT_CATEGORIES", "PART_LABELS", "KNOWN_LABELS",
+                    "LABEL_RGBA", "DEFAULT_RGBA"],
+    "_poses": ["pose", "rot_x", "rot_y", "rot_z", "R_about", "T_about", "T_inverse", "T_translation",
+               "T_from_xyz_rpy", "xyz_rpy_from_T", "transform_points", "check_pose", "check_rotation",
+               "ROTATION_ATOL"],
+    "_shape": ["ShapeKind", "Material", "Shape", "mass_properties"],
+    "_model": ["JointType", "Limit", "Dynamics", "Inertial", "Link", "Joint", "SceneModel", "joint_motion"],
+    "_urdf": ["read_urdf", "urdf_text", "urdf_xml", "write_urdf"],
+    "_truth": ["TRUTH_FORMAT", "check_truth_format", "read_truth_doc", "write_truth_doc"],
+})
