@@ -18,7 +18,7 @@ degradations, presets), ``scan_io``, ``preview``; checks in ``validate``, ``over
 
 import lazy_loader
 
-# Names are imported on first use, so importing a light module (scenes.outcome, scenes.naming) or running
+# Names are imported on first use, so importing a light module (scenes.outcome, scenes.description) or running
 # `scenes --help` does not load trimesh, scipy or open3d.
 __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "api": ["make_scene", "MadeScene", "list_scenes"],
