@@ -9,6 +9,7 @@ Python API (for users' own pytest tests)::
     cert["cabinet3_drawer12_joint"].status          # an Outcome: certified, failed, not_planned, unreachable, ...
 
     cert = simcheck.run_scenario("scenario.yaml")  # tasks in sequence, world state carried over
+    result = simcheck.batch("manifest.yaml", out="batch-out")  # every task of a manifest, on Ray
 
 Names are imported on first use, so ``import simcheck.report`` or ``simcheck.errors`` stays light (no PyBullet).
 """
@@ -31,4 +32,5 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "robot_spec_file": ["load_robot_spec"],
     "scenario": ["load_scenario"],
     "errors": ["SimcheckError", "SimcheckInputError"],
+    "batching": ["batch"],
 })

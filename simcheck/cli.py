@@ -3,6 +3,7 @@
     simcheck certify SCENE.urdf --task open-drawer:JOINT --task open-door:JOINT [--amount A ...]
                      [--against REFERENCE.urdf] [--out DIR] [--seed S] [--gui] [--video] [--robot SPEC]
     simcheck run SCENARIO.yaml [--out DIR] [--seed S] [--gui] [--video]
+    simcheck batch MANIFEST --out DIR [--workers N] [--address ADDR] ...   (simcheck.batching.command)
 
 Exit codes (:func:`scenes.outcome.exit_code` of the task outcomes): 0 every task certified; 2 the input
 could not be used (the message says why: missing joint, fixed joint named as a drawer, broken URDF...);
@@ -49,6 +50,8 @@ def _parser() -> argparse.ArgumentParser:
     r = sub.add_parser("run", help="run a scenario YAML (tasks in sequence, world state carried over)")
     r.add_argument("scenario")
     common(r)
+    from simcheck.batching.command import add_batch_parser
+    add_batch_parser(sub)
     return p
 
 
@@ -70,6 +73,9 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
     if not args.quiet:
         logging.getLogger("simcheck.certification").setLevel(min(level, logging.INFO))
+    if args.command == "batch":
+        from simcheck.batching.command import run_batch
+        return run_batch(args)
     from scenes.outcome import Outcome, exit_code, internal_error
 
     what = f"certifying {args.scene}" if args.command == "certify" else f"running scenario {args.scenario}"

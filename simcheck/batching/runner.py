@@ -1,0 +1,339 @@
+"""The batch driver on Ray: reconstruct the manifest's scans once, then certify every (scene, task) as
+one Ray task, at most one in flight per CPU of the cluster, skipping what the store already holds.
+
+Faults stay local to their task: an exception, a blown budget (see :mod:`simcheck.batching.worker`) or
+a worker that died (a segfault, ``os._exit``, a lost node) becomes that task's stored ``error`` or
+``timeout``. Only a dead worker is retried (``retries`` times, counted in the record's ``attempts``);
+an exception or a timeout would recur with the same seed. A task running
+:data:`BACKSTOP_FACTOR` x its time budget + :data:`BACKSTOP_SECONDS` (its worker did not even manage
+to end itself) is cancelled with ``ray.cancel(force=True)``.
+
+Ray is started locally (``num_cpus=workers``) unless ``address`` names a cluster (``auto``, or
+``ray://host:10001``); a Ray already initialised by the caller is used as it is and left running.
+A Ray started here is shut down when the run ends, on Ctrl-C or SIGTERM, and, through
+:mod:`simcheck.batching.guardian`, when the driver is killed outright.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import signal
+import time
+from collections import Counter
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from simcheck.batching.keys import file_digest, scan_key, task_key
+from simcheck.batching.manifest import Entry
+from simcheck.batching.store import Store
+
+__all__ = ["Job", "RunSettings", "run_jobs", "jobs_for_entries", "ray_session", "BACKSTOP_FACTOR", "BACKSTOP_SECONDS"]
+
+log = logging.getLogger(__name__)
+
+#: the driver cancels a task after BACKSTOP_FACTOR x task_timeout + BACKSTOP_SECONDS in flight
+BACKSTOP_FACTOR = 1.5
+BACKSTOP_SECONDS = 60.0
+
+
+@dataclass(frozen=True)
+class RunSettings:
+    """How tasks are run (the parts that change a result are in its key)."""
+
+    task_timeout: float | None = 300.0
+    task_memory_mb: float | None = None
+    retries: int = 1
+    images: bool = False
+
+
+@dataclass
+class Job:
+    """One certification to run (or already stored): its row fields and the worker's arguments."""
+
+    key: str
+    row: dict                 # scene (manifest name), task, line
+    args: dict                # certify_job arguments without store/attempt/budget
+    fixed: dict | None = None  # a record decided without running (e.g. the reconstruction lacks the joint)
+    attempt: int = 1
+
+
+def _movable_tasks(urdf: Path) -> list[str]:
+    from simcheck.scene_joints import read_scene_joints
+
+    out = []
+    for name, j in read_scene_joints(urdf).items():
+        if j.type == "prismatic":
+            out.append(f"open-drawer:{name}")
+        elif j.type == "revolute":
+            out.append(f"open-door:{name}")
+    return out
+
+
+def _settings(entry: Entry, settings: RunSettings) -> dict:
+    from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS
+
+    out = {"seed": entry.seed, "amount": entry.amount, "criteria": DEFAULT_CRITERIA.to_dict(),
+           "physics": dataclasses.asdict(DEFAULT_PHYSICS), "images": settings.images}
+    if entry.fault:
+        out["fault"] = entry.fault
+    return out
+
+
+def _scene_jobs(entry: Entry, scene: Path, against: Path | None, tasks: list[str], settings: RunSettings,
+                missing: dict[str, str] | None = None) -> list[Job]:
+    digests = (file_digest(scene), file_digest(against),
+               "default" if entry.robot == "default" else file_digest(entry.robot))
+    jobs = []
+    for task in tasks:
+        key = task_key(digests[0], digests[1], task, digests[2], _settings(entry, settings))
+        row = {"scene": entry.name, "task": task, "line": entry.line}
+        args = {"scene": str(scene), "against": str(against) if against else None, "task": task,
+                "robot": entry.robot, "seed": entry.seed, "amount": entry.amount, "fault": entry.fault}
+        fixed = None
+        if missing and task in missing:
+            fixed = {"status": "failed", "reason": missing[task], "certificate": "", "attempts": 0}
+        jobs.append(Job(key, row, args, fixed))
+    return jobs
+
+
+def _scan_tasks(entry: Entry, scene: Path) -> tuple[list[str], dict[str, str]]:
+    """A reconstructed scan's tasks, and why those its reconstruction cannot run fail (it lacks the
+    joint, or models it with another type: the estimate is wrong, so the task fails).
+
+    ``tasks: all-movable`` means every movable joint of the reconstruction, plus, with a ``truth``,
+    every movable joint of the truth that the reconstruction lacks."""
+    from simcheck.scene_joints import read_scene_joints
+    from simcheck.tasks import KINDS
+
+    joints = read_scene_joints(scene)
+    have = {t.split(":", 1)[1]: t for t in _movable_tasks(scene)}
+    if entry.tasks is None:
+        wanted = list(have.values())
+        if entry.against is not None:
+            wanted += [t for t in _movable_tasks(entry.against) if t.split(":", 1)[1] not in have]
+    else:
+        wanted = list(entry.tasks)
+    missing = {}
+    for task in wanted:
+        kind, _, rest = task.partition(":")
+        joint = rest.split("=", 1)[0].split("@", 1)[0]
+        j = joints.get(joint)
+        if j is None or j.type != KINDS.get(kind, ("", ""))[1]:
+            what = "no joint" if j is None else f"a {j.type} joint"
+            missing[task] = f"the reconstruction of {entry.name} has {what} {joint!r}: {kind} cannot be certified"
+    return wanted, missing
+
+
+def scans_to_reconstruct(entries: list[Entry], store: Store) -> list[Entry]:
+    """The scan entries whose reconstruction is not in ``store`` yet."""
+    return [e for e in entries if e.scan is not None and not (store.scans / _scan_key(e) / "reconstruction.json").is_file()]
+
+
+def jobs_for_entries(entries: list[Entry], store: Store, settings: RunSettings) -> list[Job]:
+    """Every job of the manifest (its scans must be reconstructed in ``store`` already: see
+    :func:`scans_to_reconstruct`); a scan whose reconstruction failed gives one row for the scan itself."""
+    jobs: list[Job] = []
+    for e in entries:
+        if e.scene is not None:
+            jobs += _scene_jobs(e, e.scene, e.against, list(e.tasks) if e.tasks else _movable_tasks(e.scene), settings)
+            continue
+        folder = store.scans / _scan_key(e)
+        import json
+
+        rec = json.loads((folder / "reconstruction.json").read_text())
+        if rec["status"] != "ok":
+            key = task_key(_scan_key(e), "", "reconstruct", "", {})
+            jobs.append(Job(key, {"scene": e.name, "task": "reconstruct", "line": e.line}, {},
+                            {"status": rec["status"], "reason": f"reconstruction failed: {rec['reason']}",
+                             "certificate": "", "attempts": 1}))
+            continue
+        tasks, missing = _scan_tasks(e, folder / "scene.urdf")
+        jobs += _scene_jobs(e, folder / "scene.urdf", e.against, tasks, settings, missing)
+    return jobs
+
+
+def _scan_key(entry: Entry) -> str:
+    return scan_key(file_digest(entry.scan), file_digest(entry.labels), entry.seed)
+
+
+class _Stop(Exception):
+    """SIGTERM / SIGHUP received: end the run like Ctrl-C."""
+
+
+def ray_session(workers: int | None, address: str | None):
+    """Context manager: a Ray connection for the run (see the module docstring); yields the number of
+    CPUs of the cluster."""
+    import contextlib
+
+    @contextlib.contextmanager
+    def session():
+        import ray
+
+        if ray.is_initialized():
+            yield int(ray.cluster_resources().get("CPU", 1))
+            return
+        guardian = None
+        kwargs = dict(include_dashboard=False, log_to_driver=False, logging_level=logging.ERROR,
+                      configure_logging=True)
+        if address:
+            ray.init(address=address, **kwargs)
+        else:
+            ray.init(address="local", num_cpus=workers, **kwargs)
+            from simcheck.batching.guardian import start_guardian
+            guardian = start_guardian()
+        previous = {s: signal.getsignal(s) for s in (signal.SIGTERM, signal.SIGHUP)}
+
+        def stop(signum, frame):
+            raise _Stop(f"signal {signal.Signals(signum).name}")
+
+        for s in previous:
+            signal.signal(s, stop)
+        try:
+            yield int(ray.cluster_resources().get("CPU", 1))
+        finally:
+            for s, h in previous.items():
+                signal.signal(s, h)
+            ray.shutdown()
+            if guardian is not None:
+                from simcheck.batching.guardian import stop_guardian
+                stop_guardian(guardian)
+
+    return session()
+
+
+def run_reconstructions(entries: list[Entry], store: Store) -> None:
+    """Reconstruct the scans of ``entries`` in parallel on Ray (results in ``store.scans``)."""
+    import ray
+
+    from simcheck.batching.worker import reconstruct_job
+
+    remote = ray.remote(max_retries=1)(reconstruct_job)
+    refs = {}
+    for e in entries:
+        key = _scan_key(e)
+        if key in {r["key"] for r in refs.values()}:
+            continue
+        refs[remote.remote({"store": str(store.root), "key": key, "scan": str(e.scan), "labels": str(e.labels),
+                            "seed": e.seed})] = {"key": key, "entry": e}
+    for ref, what in refs.items():
+        try:
+            out = ray.get(ref)
+            log.info("reconstructed %s: %s (%s)", what["entry"].name, out["status"], out["reason"])
+        except ray.exceptions.RayError as exc:
+            import json
+
+            from scenes.atomic_write import write_text_atomic
+
+            def build(tmp, exc=exc):
+                write_text_atomic(tmp / "reconstruction.json", json.dumps(
+                    {"status": "error", "reason": f"its worker died: {type(exc).__name__}"}) + "\n")
+            store.commit(store.scans, what["key"], build)
+
+
+@dataclass
+class Progress:
+    """Counts of a run by status (what the progress bar shows)."""
+
+    counts: Counter = field(default_factory=Counter)
+    computed: int = 0
+    resumed: int = 0
+    retried: int = 0
+
+
+def run_jobs(jobs: list[Job], store: Store, settings: RunSettings, slots: int, bar=None) -> Progress:
+    """Run every job not yet in ``store`` (at most ``slots`` in flight); returns the counts. ``bar``:
+    an object with ``update(n)`` and ``set_postfix_str(text)`` (a tqdm bar) or None."""
+    progress = Progress()
+    pending = []
+    for job in jobs:
+        if store.has(job.key):
+            progress.resumed += 1
+            progress.counts[store.load(job.key)["status"]] += 1
+        elif job.fixed is not None:
+            store.put_result(job.key, lambda tmp, job=job: {**job.row, **job.fixed, "start": time.time(),
+                                                            "end": time.time()})
+            progress.counts[job.fixed["status"]] += 1
+            progress.computed += 1
+        else:
+            pending.append(job)
+    if bar is not None:
+        bar.update(len(jobs) - len(pending))
+        bar.set_postfix_str(_counts_text(progress.counts))
+    if not pending:
+        return progress
+    import ray
+
+    from simcheck.batching.worker import certify_job
+
+    remote = ray.remote(max_retries=0, num_cpus=1)(certify_job)
+    inflight: dict = {}
+    cancelled: set = set()
+    backstop = (BACKSTOP_FACTOR * settings.task_timeout + BACKSTOP_SECONDS) if settings.task_timeout else None
+    pending.reverse()
+    while pending or inflight:
+        while pending and len(inflight) < slots:
+            job = pending.pop()
+            args = {**job.args, "store": str(store.root), "key": job.key, "row": job.row, "attempt": job.attempt,
+                    "timeout": settings.task_timeout, "memory_mb": settings.task_memory_mb, "images": settings.images}
+            inflight[remote.remote(args)] = (job, time.monotonic())
+        ready, _ = ray.wait(list(inflight), num_returns=1, timeout=1.0)
+        for ref in ready:
+            job, _t0 = inflight.pop(ref)
+            status = _collect(ref, job, store, settings, ref in cancelled, pending)
+            if status is None:
+                progress.retried += 1
+                continue
+            progress.counts[status] += 1
+            progress.computed += 1
+            if bar is not None:
+                bar.update(1)
+                bar.set_postfix_str(_counts_text(progress.counts))
+        if backstop is not None:
+            now = time.monotonic()
+            for ref, (job, t0) in inflight.items():
+                if ref not in cancelled and now - t0 > backstop:
+                    log.warning("%s %s: no answer after %.0f s, cancelling its worker", job.row["scene"],
+                                job.row["task"], now - t0)
+                    ray.cancel(ref, force=True)
+                    cancelled.add(ref)
+    return progress
+
+
+def _collect(ref, job: Job, store: Store, settings: RunSettings, cancelled: bool, pending: list) -> str | None:
+    """The status of a finished job (its record is in the store), or None when it was resubmitted."""
+    import ray
+
+    try:
+        return ray.get(ref)["status"]
+    except ray.exceptions.RayError as exc:
+        if store.has(job.key):   # the worker stored its outcome before ending itself
+            return store.load(job.key)["status"]
+        if cancelled:
+            status, reason = "timeout", (f"no answer after {BACKSTOP_FACTOR:g} x --task-timeout "
+                                         f"{settings.task_timeout:g} s + {BACKSTOP_SECONDS:g} s; its worker was killed")
+        elif isinstance(exc, (ray.exceptions.WorkerCrashedError, ray.exceptions.NodeDiedError,
+                              ray.exceptions.LocalRayletDiedError)) and job.attempt <= settings.retries:
+            log.warning("%s %s: its worker died (attempt %d); retrying", job.row["scene"], job.row["task"], job.attempt)
+            job.attempt += 1
+            pending.append(job)
+            return None
+        elif isinstance(exc, ray.exceptions.OutOfMemoryError):
+            status, reason = "error", f"killed by Ray's memory monitor (the node ran out of memory): {_first_line(exc)}"
+        else:
+            status = "error"
+            reason = (f"its worker died {job.attempt} time(s) (a crash such as a segfault, or a lost node): "
+                      f"{type(exc).__name__}: {_first_line(exc)}")
+        now = time.time()
+        store.put_result(job.key, lambda tmp: {**job.row, "status": status, "reason": reason, "start": now,
+                                               "end": now, "attempts": job.attempt, "certificate": ""})
+        return status
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()
+    return text[0] if text else ""
+
+
+def _counts_text(counts: Counter) -> str:
+    return " ".join(f"{k}={v}" for k, v in sorted(counts.items()))

@@ -1,0 +1,178 @@
+"""``simcheck batch`` on a local Ray (started once for the module, 2 CPUs, no dashboard): a 2-scene
+manifest end to end (certificates equal to a plain certify), resume after ``kill -9`` of the driver,
+faults that stay local to their task, and malformed manifests rejected before anything starts."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import psutil
+import pytest
+
+ray = pytest.importorskip("ray")
+
+import scenes  # noqa: E402
+import simcheck  # noqa: E402
+from simcheck.batching.manifest import ManifestError, read_manifest  # noqa: E402
+from simcheck.cli import main  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+DRAWER, DOOR = "open-drawer:cabinet1_drawer4_joint", "open-door:cabinet1_door2_joint"
+
+
+@pytest.fixture(scope="module")
+def kitchens(tmp_path_factory):
+    d = tmp_path_factory.mktemp("kitchens")
+    for seed in (0, 1):
+        scenes.make_scene("kitchen", seed=seed, scan=False, previews=False, out=d / f"k{seed}")
+    return d
+
+
+@pytest.fixture(scope="module")
+def local_ray():
+    ray.init(address="local", num_cpus=2, include_dashboard=False, log_to_driver=False, logging_level="ERROR")
+    yield
+    ray.shutdown()
+
+
+def _manifest(path: Path, entries: list[dict]) -> Path:
+    path.write_text("\n".join(json.dumps(e) for e in entries) + "\n")
+    return path
+
+
+def _movable(urdf: Path, n: int) -> list[str]:
+    from simcheck.batching.runner import _movable_tasks
+    return sorted(_movable_tasks(urdf))[:n]
+
+
+def test_two_scene_manifest_end_to_end(kitchens, local_ray, tmp_path):
+    tasks1 = _movable(kitchens / "k1/truth.urdf", 2)
+    manifest = tmp_path / "m.yaml"
+    manifest.write_text(f"""
+- scene: {kitchens}/k0/truth.urdf
+  tasks: [{DRAWER}, {DOOR}]
+- scene: {kitchens}/k1/truth.urdf
+  against: {kitchens}/k1/truth.urdf
+  tasks: [{tasks1[0]}, {tasks1[1]}]
+""")
+    out = tmp_path / "out"
+    result = simcheck.batch(manifest, out, workers=2, junit=tmp_path / "junit.xml", progress=False)
+    assert result.exit_code == 0, result.rows
+    assert result.totals == {"certified": 4}
+    assert (result.computed, result.resumed) == (4, 0)
+    doc = json.loads((out / "summary.json").read_text())
+    assert [r["task"] for r in doc["rows"]] == [DRAWER, DOOR, *tasks1]
+    assert doc["totals"] == {"certified": 4}
+    assert "<table class='sortable'>" in (out / "summary.html").read_text()
+    assert 'tests="4"' in (tmp_path / "junit.xml").read_text()
+    # a row's certificate is what a plain certify of that task gives
+    row = doc["rows"][1]
+    batch_task = simcheck.Certificate.load(out / row["certificate"]).tasks[0]
+    plain = simcheck.certify(kitchens / "k0/truth.urdf", [DOOR], seed=0, images=False).tasks[0]
+    assert batch_task.status == plain.status
+    for a, b in zip(batch_task.criteria, plain.criteria, strict=True):
+        assert a.name == b.name and a.value == pytest.approx(b.value, abs=1e-9), a.name
+    # a rerun computes nothing, and compares with a baseline
+    again = simcheck.batch(manifest, out, workers=2, baseline=out / "summary.json", progress=False)
+    assert (again.computed, again.resumed, again.newly_failing) == (0, 4, [])
+
+
+def test_faults_stay_local_to_their_task(kitchens, local_ray, tmp_path, monkeypatch):
+    monkeypatch.setenv("SIMCHECK_BATCH_TEST_FAULTS", "1")
+    scene = str(kitchens / "k0/truth.urdf")
+    manifest = _manifest(tmp_path / "m.jsonl", [
+        {"scene": scene, "tasks": [DRAWER]},
+        {"scene": scene, "tasks": [DOOR], "_fault": "segfault"},
+        {"scene": scene, "tasks": [DOOR], "_fault": "raise", "seed": 1},
+        {"scene": scene, "tasks": [DOOR], "_fault": "memory", "seed": 3},
+    ])
+    result = simcheck.batch(manifest, tmp_path / "out", workers=2, task_memory=1500, retries=1, progress=False)
+    rows = {(r["line"]): r for r in result.rows}
+    assert rows[1]["status"] == "certified"
+    assert rows[2]["status"] == "error" and rows[2]["attempts"] == 2 and "worker died" in rows[2]["reason"]
+    assert rows[3]["status"] == "error" and rows[3]["attempts"] == 1 and "test fault" in rows[3]["reason"]
+    assert rows[4]["status"] == "error" and "--task-memory 1500" in rows[4]["reason"]
+    assert result.retried == 1
+    assert result.exit_code == 3
+    # a task that hangs is stopped at its time budget, and its worker serves the next task
+    hang = _manifest(tmp_path / "hang.jsonl", [{"scene": scene, "tasks": [DOOR], "_fault": "hang"}])
+    result = simcheck.batch(hang, tmp_path / "out", workers=2, task_timeout=2, progress=False)
+    assert result.rows[0]["status"] == "timeout" and "--task-timeout 2" in result.rows[0]["reason"]
+    assert result.exit_code == 1
+
+
+def test_malformed_entry_exits_2_naming_line_and_field(kitchens, tmp_path, capsys):
+    manifest = tmp_path / "bad.yaml"
+    manifest.write_text(f"""- scene: {kitchens}/k0/truth.urdf
+  tasks: [{DRAWER}]
+- scene: {kitchens}/k0/truth.urdf
+  seed: 0
+  tasks: [open-drawer:no_such_joint]
+""")
+    out = tmp_path / "out"
+    assert main(["batch", str(manifest), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert f"{manifest}:5: field 'tasks'" in err and "no_such_joint" in err
+    assert not out.exists()   # nothing started
+
+
+@pytest.mark.parametrize("text,where", [
+    ("- scene: {k}/k0/truth.urdf\n  tasks: all-movable\n  sede: 1\n", ":3: field 'sede': unknown field"),
+    ("- scene: {k}/k0/missing.urdf\n", ":1: field 'scene': file"),
+    ("- scan: {k}/k0/truth.urdf\n  tasks: all-movable\n", ":1: field 'labels' is missing"),
+    ("- scene: {k}/k0/truth.urdf\n  seed: -1\n", ":2: field 'seed'"),
+    ("- scene: {k}/k0/truth.urdf\n  _fault: segfault\n", ":2: field '_fault': unknown field"),
+])
+def test_manifest_errors_name_line_and_field(kitchens, tmp_path, text, where):
+    manifest = tmp_path / "m.yaml"
+    manifest.write_text(text.format(k=kitchens))
+    with pytest.raises(ManifestError, match=f"{manifest}{where}"):
+        read_manifest(manifest)
+
+
+def test_json_lines_manifest_and_all_movable(kitchens, tmp_path):
+    manifest = _manifest(tmp_path / "m.jsonl", [{"scene": str(kitchens / "k0/truth.urdf"), "tasks": "all-movable"}])
+    (entry,) = read_manifest(manifest)
+    assert entry.line == 1 and entry.tasks is None and entry.seed == 0
+
+
+def _ray_descendants(pid: int) -> list[psutil.Process]:
+    try:
+        return [p for p in psutil.Process(pid).children(recursive=True)]
+    except psutil.NoSuchProcess:
+        return []
+
+
+def test_resume_after_the_driver_is_killed(kitchens, local_ray, tmp_path):
+    scene = kitchens / "k1/truth.urdf"
+    tasks = _movable(scene, 6)
+    manifest = _manifest(tmp_path / "m.jsonl", [{"scene": str(scene), "tasks": tasks}])
+    out = tmp_path / "out"
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    driver = subprocess.Popen([sys.executable, "-m", "simcheck", "batch", str(manifest), "--out", str(out),
+                               "--workers", "2", "-q"], env=env, cwd=tmp_path,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    results = out / "results"
+    deadline = time.monotonic() + 240
+    while time.monotonic() < deadline and len(list(results.glob("*/result.json"))) < 2:
+        assert driver.poll() is None, "the driver ended before it was killed"
+        time.sleep(0.2)
+    ray_procs = _ray_descendants(driver.pid)
+    driver.send_signal(signal.SIGKILL)
+    driver.wait()
+    # no Ray process of the killed driver outlives it (its guardian ends them)
+    gone, alive = psutil.wait_procs(ray_procs, timeout=20)
+    assert not alive, [p.cmdline()[:1] for p in alive]
+    before = {p.parent.name: p.stat().st_mtime_ns for p in results.glob("*/result.json")}
+    assert 2 <= len(before) < len(tasks)
+
+    result = simcheck.batch(manifest, out, workers=2, progress=False)
+    after = {p.parent.name: p.stat().st_mtime_ns for p in results.glob("*/result.json")}
+    assert result.resumed == len(before) and result.computed == len(tasks) - len(before)   # none done twice
+    assert len(after) == len(tasks) and {k: after[k] for k in before} == before              # none lost
+    assert result.totals == {"certified": len(tasks)}
+    assert not list(results.glob(".tmp-*"))
