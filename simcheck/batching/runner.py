@@ -277,7 +277,10 @@ def run_jobs(jobs: list[Job], store: Store, settings: RunSettings, slots: int, b
             args = {**job.args, "store": str(store.root), "key": job.key, "row": job.row, "attempt": job.attempt,
                     "timeout": settings.task_timeout, "memory_mb": settings.task_memory_mb, "images": settings.images}
             inflight[remote.remote(args)] = (job, time.monotonic())
-        ready, _ = ray.wait(list(inflight), num_returns=1, timeout=1.0)
+        refs = list(inflight)
+        ready, _ = ray.wait(refs, num_returns=1, timeout=1.0)
+        if ready and len(refs) > 1:   # collect every finished task at once (one wait per batch, not per task)
+            ready, _ = ray.wait(refs, num_returns=len(refs), timeout=0)
         for ref in ready:
             job, _t0 = inflight.pop(ref)
             status = _collect(ref, job, store, settings, ref in cancelled, pending)

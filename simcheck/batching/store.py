@@ -63,6 +63,9 @@ class Store:
         changed) when ``folder/key`` already exists."""
         tmp = Path(tempfile.mkdtemp(prefix=f".tmp-{key}-", dir=folder))
         try:
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(tmp, 0o777 & ~umask)   # mkdtemp makes 0700; give the folder ordinary permissions
             build(tmp)
             os.rename(tmp, folder / key)
             return True
