@@ -200,7 +200,7 @@ def reconstruct_job(job: dict) -> dict:
 
         try:
             rec = recon.reconstruct(job["scan"], job["labels"], seed=job["seed"])
-            rec.write(tmp)
+            recon.write_reconstruction(rec, tmp)
             outcome.update(status="ok", reason=f"{len(rec.objects)} objects", warnings=list(rec.warnings))
         except Exception as exc:  # noqa: BLE001 - a reconstruction failure is that scan's outcome
             bad_input = isinstance(exc, (recon.ScanError,)) or _is_input_error(exc)
