@@ -27,8 +27,8 @@ DRAWER, DOOR = "open-drawer:cabinet1_drawer4_joint", "open-door:cabinet1_door2_j
 @pytest.fixture(scope="module")
 def kitchens(tmp_path_factory):
     d = tmp_path_factory.mktemp("kitchens")
-    for seed in (0, 1):
-        scenes.make_scene("kitchen", seed=seed, scan=False, previews=False, out=d / f"k{seed}")
+    for seed in (0, 1):   # kitchen 1 is also scanned: the manifest reconstructs it
+        scenes.make_scene("kitchen", seed=seed, scan=seed == 1, previews=False, out=d / f"k{seed}")
     return d
 
 
@@ -55,8 +55,9 @@ def test_two_scene_manifest_end_to_end(kitchens, local_ray, tmp_path):
     manifest.write_text(f"""
 - scene: {kitchens}/k0/truth.urdf
   tasks: [{DRAWER}, {DOOR}]
-- scene: {kitchens}/k1/truth.urdf
-  against: {kitchens}/k1/truth.urdf
+- scan: {kitchens}/k1/scan.ply          # reconstructed once, certified against its truth
+  labels: {kitchens}/k1/labels.json
+  truth: {kitchens}/k1/truth.urdf
   tasks: [{tasks1[0]}, {tasks1[1]}]
 """)
     out = tmp_path / "out"
@@ -66,6 +67,8 @@ def test_two_scene_manifest_end_to_end(kitchens, local_ray, tmp_path):
     assert (result.computed, result.resumed) == (4, 0)
     doc = json.loads((out / "summary.json").read_text())
     assert [r["task"] for r in doc["rows"]] == [DRAWER, DOOR, *tasks1]
+    assert [r["line"] for r in doc["rows"]] == [2, 2, 4, 4]
+    assert len(list((out / "scans").glob("*/scene.urdf"))) == 1
     assert doc["totals"] == {"certified": 4}
     assert "<table class='sortable'>" in (out / "summary.html").read_text()
     assert 'tests="4"' in (tmp_path / "junit.xml").read_text()
