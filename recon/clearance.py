@@ -40,7 +40,7 @@ from recon.model import JointType, ObjectReconstruction
 from recon.primitive import Primitive, PrimitiveKind
 from recon.walls import Wall
 
-__all__ = ["separation", "cleared_scene", "scene_shapes", "SceneShape"]
+__all__ = ["separation", "cleared_scene", "links_in_contact", "scene_shapes", "SceneShape"]
 
 log = logging.getLogger(__name__)
 
@@ -291,3 +291,19 @@ def _rebuilt(objects, walls, shapes: list[SceneShape]):
         new_objects.append(dataclasses.replace(obj, parts=tuple(parts)))
     new_walls = tuple(Wall(w.name, w.size, by_link[w.name][0].T_world_part, w.n_points) for w in walls)
     return tuple(new_objects), new_walls
+
+
+def links_in_contact(objects, walls, distance: float) -> tuple[tuple[str, str, float], ...]:
+    """((link a, link b, separation m), ...) of every pair of links (a < b by name) whose shapes come
+    within ``distance`` of each other at q = 0 (the separating-axis distance of :func:`separation`, a
+    lower bound: a pair listed may be a little farther apart, none within ``distance`` is missed);
+    sorted by name. A negative separation is a remaining overlap."""
+    shapes = scene_shapes(objects, walls)
+    boxes = _aabbs([s.prim for s in shapes])
+    out: dict[tuple[str, str], float] = {}
+    for i, j in _near_pairs(shapes, boxes, distance):
+        sep = separation(shapes[i].prim, shapes[j].prim)
+        if sep <= distance:
+            key = tuple(sorted((shapes[i].link, shapes[j].link)))
+            out[key] = min(out.get(key, np.inf), sep)
+    return tuple((a, b, float(s)) for (a, b), s in sorted(out.items()))

@@ -32,6 +32,9 @@ class ClearanceConfig:
     """A fitted wall moves back (out of the room) at most this far to clear an object."""
     max_passes: int = 4
     """Passes over the overlapping pairs (a cut can only shrink a shape, so few are needed)."""
+    contact_distance: float = 0.005
+    """Links whose shapes come this close at q = 0 are in contact at rest: scene.srdf lists them
+    (``disable_collisions``) for planners that read one (fronts hang 2-3 mm off their carcass)."""
 
 
 @dataclass(frozen=True)

@@ -41,7 +41,7 @@ class PhysicsConfig:
             ``<dynamics friction>`` is smaller (PyBullet ignores URDF joint friction; we emulate it with a
             zero-velocity motor of this force, which is also what keeps an opened door from drifting).
         overlap_tolerance: two scene links that already interpenetrate deeper than this (metres) in the
-            loaded (closed) state never collide with each other (reconstructed primitives overlap by mm).
+            loaded (closed) state never collide with each other (a third-party file's may; logged as a warning).
         speed_scale: fraction of each robot joint's URDF velocity limit used to time-parametrise a plan.
         max_joint_speed: cap on any robot joint speed while executing, rad/s or m/s.
         open_speed_scale: extra slow-down of the opening segment (pulling an object is done gently).

@@ -384,17 +384,23 @@ class World:
         self._filter_initial_overlaps()
 
     def _filter_initial_overlaps(self) -> None:
-        """Disable collision between scene links that already interpenetrate as loaded."""
+        """Disable collision between scene links that already interpenetrate as loaded, deeper than
+        ``overlap_tolerance``: a third-party file's links may (partscene's own scene.urdf and truth.urdf
+        keep their links apart, recon.clearance). Each pair is logged as a warning and recorded in
+        :attr:`disabled_overlaps` as (link a, link b, depth m)."""
         pb.performCollisionDetection(physicsClientId=self.client)
-        seen = set()
+        seen: dict[tuple, float] = {}
         for cp in pb.getContactPoints(physicsClientId=self.client):
             a, b, dist = (cp[1], cp[3]), (cp[2], cp[4]), cp[8]
-            if (a in self._scene_names and b in self._scene_names and dist < -self.config.overlap_tolerance
-                    and (a, b) not in seen):
-                seen.add((a, b))
-                pb.setCollisionFilterPair(a[0], b[0], a[1], b[1], 0, physicsClientId=self.client)
-                log.info("scene links %s and %s overlap by %.1f mm as loaded: not colliding with each other",
-                         self._scene_names[a], self._scene_names[b], -dist * 1e3)
+            if a in self._scene_names and b in self._scene_names and dist < -self.config.overlap_tolerance:
+                if (a, b) not in seen:
+                    pb.setCollisionFilterPair(a[0], b[0], a[1], b[1], 0, physicsClientId=self.client)
+                seen[(a, b)] = max(seen.get((a, b), 0.0), -dist)
+        self.disabled_overlaps = tuple((self._scene_names[a], self._scene_names[b], depth)
+                                       for (a, b), depth in seen.items())
+        for a, b, depth in self.disabled_overlaps:
+            log.warning("scene %s: links %s and %s overlap by %.1f mm as loaded: collisions between them "
+                        "disabled", self.scene_urdf, a, b, depth * 1e3)
 
     def _load_robot(self, robot: SimRobot) -> int:
         try:

@@ -23,15 +23,16 @@ MAX_OVERLAP = 5e-4    # m two links may interpenetrate at q = 0
 
 @pytest.fixture(scope="module", params=["clean", "realistic"])
 def kitchen(request, tmp_path_factory):
-    """{"scene.urdf", "truth.urdf", "scan", "labels", "preset"} of kitchen seed 0 reconstructed from ``preset``."""
+    """{"scene.urdf", "scene.xml", "scene.srdf", "truth.urdf", "scan", "labels", "preset"} of kitchen seed 0 reconstructed from ``preset``."""
     import scenes
     from recon import reconstruct, write_reconstruction
 
     out = tmp_path_factory.mktemp(f"kitchen_{request.param}")
     scenes.make_scene("kitchen", seed=0, preset=request.param, out=out / "truth", previews=False)
     rec = reconstruct(out / "truth" / "scan.npz", out / "truth" / "labels.json", seed=0)
-    paths = write_reconstruction(rec, out / "recon")
-    return {"scene.urdf": paths["scene.urdf"], "truth.urdf": out / "truth" / "truth.urdf",
+    paths = write_reconstruction(rec, out / "recon", mjcf=True)
+    return {"scene.urdf": paths["scene.urdf"], "scene.xml": paths["scene.xml"], "scene.srdf": paths["scene.srdf"],
+            "truth.urdf": out / "truth" / "truth.urdf",
             "scan": out / "truth" / "scan.npz", "labels": out / "truth" / "labels.json", "preset": request.param}
 
 
@@ -157,6 +158,82 @@ def test_rests_in_mujoco(urdf):
     moved = mujoco_rest(urdf)
     assert moved, f"{urdf}: MuJoCo found no movable joint"
     _assert_still(moved, f"MuJoCo, {urdf}")
+
+
+def test_scene_xml_rests_in_mujoco(kitchen):
+    pytest.importorskip("mujoco")
+    moved = mujoco_rest(kitchen["scene.xml"])
+    assert moved, f"{kitchen['scene.xml']}: MuJoCo found no movable joint"
+    _assert_still(moved, f"MuJoCo, {kitchen['scene.xml']}")
+
+
+def test_scene_xml_is_the_scene_urdf_in_mujoco(kitchen):
+    """MuJoCo's own import of scene.urdf and our scene.xml agree: joint names and types, world axes and
+    anchors at q = 0 and at mid-range, ranges, damping, friction loss, the mass that moves; collision geoms collide,
+    visual geoms do not and carry their part label's colour."""
+    mujoco = pytest.importorskip("mujoco")
+    models = [mujoco.MjModel.from_xml_path(str(kitchen[k])) for k in ("scene.urdf", "scene.xml")]
+    datas = [mujoco.MjData(m) for m in models]
+
+    def joints(m, d):
+        out = {}
+        for j in range(m.njnt):
+            dof = m.jnt_dofadr[j]
+            out[mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j)] = dict(
+                type=int(m.jnt_type[j]), range=m.jnt_range[j].copy(), damping=float(m.dof_damping[dof]),
+                frictionloss=float(m.dof_frictionloss[dof]), armature=float(m.dof_armature[dof]),
+                axis=d.xaxis[j].copy(), anchor=d.xanchor[j].copy())
+        return out
+
+    for fraction in (0.0, 0.5):
+        for m, d in zip(models, datas):
+            for j in range(m.njnt):
+                d.qpos[m.jnt_qposadr[j]] = m.jnt_range[j][0] + fraction * (m.jnt_range[j][1] - m.jnt_range[j][0])
+            mujoco.mj_forward(m, d)
+        a, b = joints(models[0], datas[0]), joints(models[1], datas[1])
+        assert set(a) == set(b) and a
+        for name in a:
+            for key in ("type", "damping", "frictionloss", "armature"):
+                assert a[name][key] == pytest.approx(b[name][key], abs=1e-9), (name, key)
+            for key in ("range", "axis", "anchor"):
+                assert np.allclose(a[name][key], b[name][key], atol=1e-5), (name, key, a[name][key], b[name][key])
+    moving_mass = [float(m.body_mass[m.body_weldid != 0].sum()) for m in models]   # the URDF import fuses static links
+    assert moving_mass[0] > 0 and moving_mass[0] == pytest.approx(moving_mass[1], rel=1e-6)
+    m = models[1]
+    names = [mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, g) for g in range(m.ngeom)]
+    for g, name in enumerate(names):
+        if "_collision" in name:
+            assert m.geom_contype[g] == 1 and m.geom_conaffinity[g] == 1, name
+        else:
+            assert m.geom_contype[g] == 0 and m.geom_conaffinity[g] == 0, name
+    from scenes.truth_urdf import LABEL_RGBA
+
+    door = next(g for g, n in enumerate(names) if "_door" in n and "_visual" in n)
+    assert np.allclose(m.mat_rgba[m.geom_matid[door]], LABEL_RGBA["door"])
+
+
+def test_scene_srdf_lists_the_pairs_in_contact_at_rest(kitchen):
+    import xml.etree.ElementTree as ET
+
+    import yourdfpy
+
+    root = ET.parse(kitchen["scene.srdf"]).getroot()
+    pairs = {(e.get("link1"), e.get("link2")): e.get("reason") for e in root.iter("disable_collisions")}
+    u = yourdfpy.URDF.load(str(kitchen["scene.urdf"]), build_scene_graph=False, load_meshes=False)
+    links = {link.name for link in u.robot.links}
+    assert pairs and all(a in links and b in links and a < b for a, b in pairs)
+    handles = [j for j in u.robot.joints if "handle" in j.child]
+    assert all(pairs.get(tuple(sorted((j.parent, j.child)))) == "Adjacent" for j in handles)
+    drawers = [j for j in u.robot.joints if j.type == "prismatic"]
+    assert drawers and all(tuple(sorted((j.parent, j.child))) in pairs for j in drawers)
+
+
+def test_simcheck_disables_no_collision_pair_of_our_files(urdf):
+    """simcheck's overlap filter is for third-party files: on ours it disables nothing."""
+    from simcheck.world import World
+
+    with World(urdf) as world:
+        assert world.disabled_overlaps == ()
 
 
 def test_rests_in_pybullet_with_self_collision(urdf):
