@@ -26,7 +26,7 @@ import numpy as np
 import yourdfpy
 from scipy.spatial.transform import Rotation
 
-from scenes.naming import WORLD_LINK
+from scenes.description import WORLD_LINK
 
 __all__ = ["mjcf_string", "reconstruction_mjcf", "JOINT_ARMATURE"]
 

@@ -14,7 +14,7 @@ import xml.etree.ElementTree as ET
 
 from recon.clearance import links_in_contact
 from recon.model import Reconstruction
-from scenes.naming import WORLD_LINK
+from scenes.description import WORLD_LINK
 
 __all__ = ["srdf_string", "resting_contacts"]
 

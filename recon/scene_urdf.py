@@ -29,7 +29,7 @@ import yourdfpy
 
 from recon.model import JointType, Reconstruction
 from recon.primitive import Primitive, PrimitiveKind
-from scenes.description import LABEL_RGBA, WORLD_LINK
+from scenes.description import DEFAULT_RGBA, LABEL_RGBA, WORLD_LINK
 
 __all__ = ["urdf_robot", "urdf_string", "link_frames", "compound_inertial", "label_rgba",
            "LENGTH_DECIMALS", "SIGNIFICANT_DIGITS"]
@@ -38,7 +38,6 @@ LENGTH_DECIMALS = 6
 """Lengths (m) and angles (rad) in scene.urdf are rounded to 1e-6."""
 SIGNIFICANT_DIGITS = 9
 """Masses and inertias in scene.urdf keep this many significant digits."""
-_DEFAULT_RGBA = (0.6, 0.6, 0.6, 1.0)
 
 
 WALL_DENSITY = 1500.0
@@ -53,7 +52,7 @@ def _translation(p: np.ndarray) -> np.ndarray:
 
 def label_rgba(label: str) -> tuple[float, float, float, float]:
     """(r, g, b, a) in 0..1 of a part label (grey for a label without a colour)."""
-    return tuple(float(x) for x in LABEL_RGBA.get(label, _DEFAULT_RGBA))
+    return tuple(float(x) for x in LABEL_RGBA.get(label, DEFAULT_RGBA))
 
 
 def _material(label: str) -> yourdfpy.Material:

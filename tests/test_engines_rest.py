@@ -206,7 +206,7 @@ def test_scene_xml_is_the_scene_urdf_in_mujoco(kitchen):
             assert m.geom_contype[g] == 1 and m.geom_conaffinity[g] == 1, name
         else:
             assert m.geom_contype[g] == 0 and m.geom_conaffinity[g] == 0, name
-    from scenes.truth_urdf import LABEL_RGBA
+    from scenes.description import LABEL_RGBA
 
     door = next(g for g, n in enumerate(names) if "_door" in n and "_visual" in n)
     assert np.allclose(m.mat_rgba[m.geom_matid[door]], LABEL_RGBA["door"])
