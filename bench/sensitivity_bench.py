@@ -105,7 +105,8 @@ def peak_grasp_force(rollout, window: float = 0.05) -> float:
 
 def _peak_force(task, out: Path) -> float:
     try:
-        return float(task.criterion("grasp_force").value)
+        value = float(task.criterion("grasp_force").value)
+        return value if np.isfinite(value) else float("nan")      # infinite: no grasp was made
     except KeyError:
         pass
     if not task.rollout:
@@ -300,10 +301,15 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _grasp_model(physics) -> str:
-    """One line naming the grasp model's parameters as the physics config has them."""
-    fields = [f for f in ("grasp_max_force", "grasp_hold_force", "grasp_friction", "grip_force")
-              if hasattr(physics, f)]
-    return ", ".join(f"{f} = {getattr(physics, f):g}" for f in fields) or "(see simcheck.config)"
+    """One line naming the grasp model behind the verdicts: the default robot's gripper (grip force,
+    pad friction, holding force) when its spec has one, else the physics config's attachment bound."""
+    import planners
+
+    gripper = getattr(planners.default_robot(), "gripper", None)
+    if gripper is not None:
+        return (f"grip force {gripper.grip_force:g} N, pad friction {gripper.pad_friction:g}, "
+                f"holding force {gripper.holding_force:g} N")
+    return f"a weld bounded by {physics.grasp_max_force:g} N per constraint row"
 
 
 if __name__ == "__main__":
