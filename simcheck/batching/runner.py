@@ -223,7 +223,7 @@ def run_reconstructions(entries: list[Entry], store: Store) -> None:
         except ray.exceptions.RayError as exc:
             import json
 
-            from scenes.atomic_write import write_text_atomic
+            from scenes.description import write_text_atomic
 
             def build(tmp, exc=exc):
                 write_text_atomic(tmp / "reconstruction.json", json.dumps(

@@ -19,7 +19,7 @@ import tempfile
 from pathlib import Path
 from typing import Callable
 
-from scenes.atomic_write import write_text_atomic
+from scenes.description import write_text_atomic
 
 __all__ = ["Store", "RESULT_FORMAT"]
 

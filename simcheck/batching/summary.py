@@ -17,7 +17,7 @@ import xml.etree.ElementTree as ET
 from collections import Counter, defaultdict
 from pathlib import Path
 
-from scenes.atomic_write import write_text_atomic
+from scenes.description import write_text_atomic
 
 __all__ = ["rows_from_store", "write_summary", "write_junit", "newly_failing", "SUMMARY_FORMAT"]
 

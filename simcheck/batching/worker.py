@@ -188,7 +188,7 @@ def reconstruct_job(job: dict) -> dict:
     """
     import json
 
-    from scenes.atomic_write import write_text_atomic
+    from scenes.description import write_text_atomic
     from simcheck.batching.store import Store
 
     store = Store(job["store"])
