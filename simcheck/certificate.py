@@ -61,6 +61,7 @@ class TaskCertificate:
         start_robot_q: the robot's controlled joints when the task's execution started (its rollout's
             first sample; the robot's configuration when the task began if nothing was executed), rad or m
             by joint name. A scenario's task starts where the previous one ended.
+        robust: with ``--robust N``, how the plan fared in N sampled worlds (:mod:`simcheck.robust_verdict`).
     """
 
     kind: str
@@ -77,6 +78,7 @@ class TaskCertificate:
     plan_status: str = ""
     start_state: dict = field(default_factory=dict)
     start_robot_q: dict = field(default_factory=dict)
+    robust: dict | None = None
 
     @property
     def ok(self) -> bool:
@@ -98,7 +100,8 @@ class TaskCertificate:
                 "amount": self.amount, "unit": self.unit, "seed": self.seed, "plan_status": self.plan_status,
                 "start_state": dict(self.start_state), "start_robot_q": dict(self.start_robot_q),
                 "timings": dict(self.timings), "rollout": self.rollout,
-                "images": list(self.images), "criteria": [c.to_dict() for c in self.criteria]}
+                "images": list(self.images), "criteria": [c.to_dict() for c in self.criteria],
+                **({} if self.robust is None else {"robust": self.robust})}
 
     @classmethod
     def from_dict(cls, d: dict) -> "TaskCertificate":
@@ -110,7 +113,8 @@ class TaskCertificate:
                    criteria=tuple(CriterionResult.from_dict(c) for c in d.get("criteria", [])),
                    seed=int(d.get("seed", 0)), timings=dict(d.get("timings", {})), rollout=d.get("rollout", ""),
                    images=tuple(d.get("images", [])), plan_status=d.get("plan_status", ""),
-                   start_state=dict(d.get("start_state", {})), start_robot_q=dict(d.get("start_robot_q", {})))
+                   start_state=dict(d.get("start_state", {})), start_robot_q=dict(d.get("start_robot_q", {})),
+                   robust=d.get("robust"))
 
 
 @dataclass(frozen=True)

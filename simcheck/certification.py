@@ -275,7 +275,8 @@ def _run_task(session: Session, task: Task, planner: Callable, seed: int, criter
 
 def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, planner: Callable | None = None,
             amounts=None, criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
-            images: bool = True, video: bool = False, gui: bool = False, carry_state: bool = False) -> Certificate:
+            images: bool = True, video: bool = False, gui: bool = False, carry_state: bool = False,
+            robust: int | None = None, min_success: float = 0.9, replay_sample: int | None = None) -> Certificate:
     """Certify each task on ``scene``; returns the :class:`Certificate` (written to ``out`` if given).
 
     Args:
@@ -289,11 +290,20 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         amounts: one amount for all tasks or one per task (m or rad), for tasks without one.
         carry_state: run the tasks one after the other in one world, its state carried from task to task
             (a scenario); by default each task is judged in freshly loaded worlds.
+        robust: execute each task's plan in this many worlds sampled from the scan's uncertainty, physics
+            ranges and robot errors too; certified only if the 95 % lower bound on the success rate reaches
+            ``min_success`` (:mod:`simcheck.robust`). ``replay_sample``: run only that sample.
 
     Raises:
         SimcheckInputError (SceneLoadError, TaskSpecError, RobotBindingError): unusable input, naming
             the file and joint; ``planners.PlannerInputError`` likewise.
     """
+    if robust is not None or replay_sample is not None:
+        from simcheck.robust import certify_robustly
+        return certify_robustly(certify, scene, tasks, robust=robust, min_success=min_success,
+                                replay_sample=replay_sample, against=against, seed=seed, out=out, robot=robot,
+                                planner=planner, amounts=amounts, criteria=criteria, physics=physics, images=images,
+                                video=video, gui=gui)
     t0 = time.perf_counter()
     scene = Path(scene)
     against = Path(against) if against is not None else None

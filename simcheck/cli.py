@@ -2,6 +2,7 @@
 
     simcheck certify SCENE.urdf --task open-drawer:JOINT --task open-door:JOINT [--amount A ...]
                      [--against REFERENCE.urdf] [--out DIR] [--seed S] [--gui] [--video] [--robot SPEC]
+                     [--robust N [--min-success P] [--replay-sample I]]
     simcheck run SCENARIO.yaml [--out DIR] [--seed S] [--gui] [--video]
     simcheck batch MANIFEST --out DIR [--workers N] [--address ADDR] ...   (simcheck.batching.command)
 
@@ -46,6 +47,11 @@ def _parser() -> argparse.ArgumentParser:
                    help="opening, m or rad: one for all tasks or one per task (default: 90%% of the range, doors <= 90 deg)")
     c.add_argument("--against", default=None, help="reference URDF to execute on (joints matched by name)")
     c.add_argument("--robot", default="default", help="'default' or a robot spec YAML/JSON file")
+    rb = c.add_argument_group("robust certification (worlds sampled from the scan's uncertainty)")
+    rb.add_argument("--robust", type=int, default=None, metavar="N", help="execute the plan in N sampled worlds")
+    rb.add_argument("--min-success", type=float, default=0.9, metavar="P",
+                    help="certify when, with 95%% confidence, at least P of such worlds succeed (default 0.9)")
+    rb.add_argument("--replay-sample", type=int, default=None, metavar="I", help="execute sample I alone")
     common(c)
     r = sub.add_parser("run", help="run a scenario YAML (tasks in sequence, world state carried over)")
     r.add_argument("scenario")
@@ -88,7 +94,8 @@ def main(argv: list[str] | None = None) -> int:
             robot = load_robot_spec(args.robot)
             cert = certify(args.scene, args.task, against=args.against, amounts=args.amount or None,
                                     seed=args.seed or 0, out=Path(args.out), robot=robot, images=not args.no_images,
-                                    video=args.video, gui=args.gui)
+                                    video=args.video, gui=args.gui, robust=args.robust,
+                                    min_success=args.min_success, replay_sample=args.replay_sample)
         else:
             cert = run_scenario(args.scenario, out=Path(args.out), seed=args.seed, images=not args.no_images,
                                          video=args.video, gui=args.gui)

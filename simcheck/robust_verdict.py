@@ -8,6 +8,7 @@ certified when it reaches ``min_success`` (with 30 samples and the default 0.9 t
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from scipy.stats import beta
@@ -51,7 +52,8 @@ class SampleResult:
 def robust_block(results: list[SampleResult], confidence: float = CONFIDENCE, extra: dict | None = None) -> dict:
     """The ``"robust"`` block of a task in certificate.json (results in sample order).
 
-    ``worst_margins`` : per criterion, the smallest margin over the samples that measured it.
+    ``worst_margins`` : per criterion, the smallest margin over the samples that measured it (null when
+    it could not be measured in some sample, e.g. a grasp never made).
     ``extra`` : further keys (the spreads sampled, their source), appended after the issue's keys.
     """
     n = len(results)
@@ -60,6 +62,7 @@ def robust_block(results: list[SampleResult], confidence: float = CONFIDENCE, ex
     for r in results:
         for name, m in r.margins.items():
             worst[name] = min(worst.get(name, float("inf")), float(m))
+    worst = {name: (m if math.isfinite(m) else None) for name, m in worst.items()}
     block = {"samples": n, "successes": k, "success_lower_bound": success_lower_bound(k, n, confidence) if n else 0.0,
              "confidence": confidence, "worst_margins": worst,
              "perturbations": [r.perturbation.to_dict() for r in results],

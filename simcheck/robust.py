@@ -1,0 +1,194 @@
+"""Robust certification (``simcheck certify ... --robust N``): plan once on the estimate, then execute that
+plan in N sampled worlds consistent with the scan, each in its own worker process with a fresh PyBullet
+world, and certify only when the one-sided 95 % Clopper–Pearson lower bound on the success rate reaches
+``min_success``.
+
+* The nominal run is :func:`simcheck.certification.certify` itself (plan, independent re-check, execution
+  on the estimate or on ``against``); its planner is wrapped to keep the plan.
+* Sample i is :func:`simcheck.perturbations.sample_perturbation` (seed, i) written as a URDF by
+  :mod:`simcheck.perturbed_scene` (from the estimate; with ``against``, from the reference, physics ranges
+  only), executed with the plan (the arm's position gain scaled by the sample's tracking factor) and judged
+  by the same rollout criteria. A sample succeeds when every criterion passes.
+* The task is certified when the nominal run is and the bound reaches ``min_success``; its certificate
+  gets the ``"robust"`` block (:func:`simcheck.robust_verdict.robust_block`).
+* ``replay_sample=i`` executes sample i alone, in this process (images, video and rollout as usual).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import os
+import tempfile
+import time
+from concurrent.futures import ProcessPoolExecutor
+from multiprocessing import get_context
+from pathlib import Path
+
+import numpy as np
+
+from scenes.outcome import Outcome
+from simcheck.perturbations import Perturbation, sample_perturbation
+from simcheck.perturbed_scene import write_perturbed_scene
+from simcheck.robust_spreads import (DEFAULT_PHYSICS_RANGES, DEFAULT_ROBOT_ERRORS, JointSpreads, check_robust_args,
+                                     joint_spreads_for, spreads_dict)
+from simcheck.robust_verdict import CONFIDENCE, SampleResult, robust_block, robust_outcome
+from simcheck.scene_joints import read_scene_joints
+from simcheck.tasks import parse_tasks
+
+__all__ = ["certify_robustly", "run_sample"]
+
+log = logging.getLogger(__name__)
+
+
+class _PlanKeeper:
+    """A planner that remembers the plan it returned for each task joint."""
+
+    def __init__(self, planner):
+        self.planner, self.plans = planner, {}
+        self.robot_spec = getattr(planner, "robot_spec", None)
+
+    def __call__(self, scene, task, seed, start=None, state=None):
+        outcome = self.planner(scene, task, seed, start, state)
+        self.plans[task.joint] = outcome.plan if outcome.ok else None
+        return outcome
+
+
+def _pivot_xy(plan) -> tuple[float, float]:
+    """Where the robot stands while it opens: base (x, y) -- the plan's first two joints -- at the start of
+    its "open" segment (else of its first segment)."""
+    seg = next((s for s in plan.segments if s.name == "open"), plan.segments[0])
+    q = np.asarray(seg.q, dtype=float)
+    return float(q[0, 0]), float(q[0, 1])
+
+
+def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics, criteria, pivot, workdir: str,
+               out: str | None = None, images: bool = False, video: bool = False) -> SampleResult:
+    """Execute ``plan`` in the world of perturbation ``p`` (built from scene ``src``) and judge it.
+
+    Runs in a worker process (the world is created and closed here). ``out``: a folder for the rollout /
+    images of a replayed sample. Returns the sample's outcome, reason and criterion margins.
+    """
+    from simcheck.criteria import rollout_criteria
+    from simcheck.execute import execute_task
+    from simcheck.world import World
+
+    urdf = write_perturbed_scene(src, p, Path(workdir) / f"sample{p.index}.urdf", pivot)
+    phys = dataclasses.replace(physics, robot_position_gain=physics.robot_position_gain * p.tracking_gain)
+    try:
+        with World(urdf, robot, phys) as world:
+            camera = None
+            if out is not None and (images or video):
+                from simcheck.execute import handle_link_for
+                from simcheck.keyframes import KeyFrameCamera
+
+                handle = handle_link_for(world, plan.joint, plan.grasp_link)
+                camera = KeyFrameCamera(world, world.scene_link_pose(handle)[:3, 3], np.array([*pivot, 1.0]),
+                                        Path(out) / "images", f"sample{p.index}", video=video)
+            rollout = execute_task(world, plan, phys, requested_amount=requested,
+                                   frame_callback=camera.snap if camera else None)
+            if out is not None:
+                rollout.save(Path(out) / "rollouts" / f"{plan.joint}_sample{p.index}.npz")
+                if camera is not None and video:
+                    camera.save_video()
+    except Exception as exc:       # a world that cannot be built or run is a failed sample, said why
+        log.warning("sample %d: %s", p.index, exc)
+        return SampleResult(p, Outcome.ERROR, f"sample {p.index} could not be executed: {exc}", {})
+    crit = rollout_criteria(rollout, criteria)
+    failed = [c for c in crit if not c.passed]
+    reason = "; ".join(f"{c.name}: {c.detail}" for c in failed) if failed else "every criterion passed"
+    return SampleResult(p, Outcome.FAILED if failed else Outcome.CERTIFIED, reason, {c.name: c.margin for c in crit})
+
+
+def _context():
+    """Worker processes forked where the platform can (no re-import, no ``__main__`` guard needed in a
+    caller's script); each builds its own PyBullet client. Spawned elsewhere."""
+    import multiprocessing
+
+    return get_context("fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn")
+
+
+def _run_sample_args(args) -> SampleResult:
+    return run_sample(*args)
+
+
+def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, replay_sample: int | None,
+                     against, seed: int, out, robot, planner, amounts, criteria, physics, images: bool,
+                     video: bool, gui: bool, workers: int | None = None):
+    """:func:`simcheck.certification.certify` with ``robust`` sampled worlds per task (module docstring).
+
+    certify : the plain certify function (called once, for the nominal run). Raises SimcheckInputError
+    naming ``robust`` / ``min_success`` / ``replay_sample`` or a graph.json uncertainty field.
+    """
+    check_robust_args(robust, min_success)
+    if replay_sample is not None and not (isinstance(replay_sample, int) and 0 <= replay_sample < robust):
+        from simcheck.errors import SimcheckInputError
+        raise SimcheckInputError(f"replay_sample: must be an integer in [0, {robust}), got {replay_sample!r}")
+    t0 = time.perf_counter()
+    scene = Path(scene)
+    source = Path(against) if against is not None else scene
+    joints = read_scene_joints(source)
+    spreads = {}
+    for task in parse_tasks(tasks, amounts):             # validate graph.json before any simulation
+        sj = read_scene_joints(scene).get(task.joint)
+        if sj is not None and sj.type in ("prismatic", "revolute") and against is None:
+            spreads[task.joint] = joint_spreads_for(scene, task.joint, sj.type)
+    if planner is None:
+        from simcheck.certification import planners_planner
+        planner = planners_planner(robot)
+        robot = planner.robot_spec
+    keeper = _PlanKeeper(planner)
+    nominal = certify(scene, tasks, against=against, seed=seed, out=out, robot=robot, planner=keeper,
+                      amounts=amounts, criteria=criteria, physics=physics, images=images and replay_sample is None,
+                      video=video and replay_sample is None, gui=gui)
+    from simcheck.robot_binding import sim_robot_from_spec
+    sim_robot = sim_robot_from_spec(robot)
+    out_tasks = []
+    for tc in nominal.tasks:
+        plan = keeper.plans.get(tc.joint)
+        ref = joints.get(tc.joint)
+        if plan is None or ref is None or ref.type not in ("prismatic", "revolute"):
+            out_tasks.append(tc)            # not planned / nothing to move: the nominal verdict stands
+            continue
+        mode = "physics" if against is not None else "scan"
+        jspreads, centre = spreads.get(tc.joint, (JointSpreads(0.0, 0.0, 0.0, "reference (physics only)"), None))
+        indices = [replay_sample] if replay_sample is not None else list(range(robust))
+        perts = [sample_perturbation(i, seed, tc.joint, ref.type, ref.axis_world, ref.origin_world, ref.upper, centre,
+                                     jspreads, DEFAULT_PHYSICS_RANGES, DEFAULT_ROBOT_ERRORS, mode) for i in indices]
+        requested = float(plan.amount) if ref.type == read_scene_joints(scene)[tc.joint].type else float(tc.amount)
+        pivot = _pivot_xy(plan)
+        t1 = time.perf_counter()
+        with tempfile.TemporaryDirectory(prefix="partscene_robust_") as tmp:
+            args = [(str(source), p, plan, requested, sim_robot, physics, criteria, pivot, tmp) for p in perts]
+            if replay_sample is not None:
+                results = [run_sample(*args[0], out=None if out is None else str(out), images=images, video=video)]
+            else:
+                n_workers = max(1, min(len(args), workers or os.cpu_count() or 1))
+                with ProcessPoolExecutor(n_workers, mp_context=_context()) as pool:
+                    results = list(pool.map(_run_sample_args, args))
+        extra = {"min_success": min_success, "mode": mode, "spreads": spreads_dict(jspreads, DEFAULT_PHYSICS_RANGES,
+                                                                                   DEFAULT_ROBOT_ERRORS),
+                 "seconds": time.perf_counter() - t1}
+        if replay_sample is not None:
+            extra["replayed_sample"] = replay_sample
+        block = robust_block(results, CONFIDENCE, extra)
+        ok = robust_outcome(block, min_success) is Outcome.CERTIFIED and tc.status is Outcome.CERTIFIED
+        if replay_sample is not None:
+            status, reason = results[0].outcome, f"replayed sample {replay_sample}: {results[0].reason}"
+        else:
+            status = Outcome.CERTIFIED if ok else Outcome.FAILED
+            reason = (f"robust: {block['successes']} of {block['samples']} sampled worlds opened it; with "
+                      f"{CONFIDENCE:.0%} confidence at least {block['success_lower_bound']:.3f} of such worlds do "
+                      f"({'>=' if block['success_lower_bound'] >= min_success else '<'} {min_success:g}); "
+                      f"nominal: {tc.status.value} -- {tc.reason}")
+            if block["failures"]:
+                f = block["failures"][0]
+                reason += f"; first failing sample {f['sample']}: {f['reason']}"
+        out_tasks.append(dataclasses.replace(tc, status=status, reason=reason, robust=block))
+    cert = dataclasses.replace(nominal, tasks=tuple(out_tasks), path=None,
+                               timings={**nominal.timings, "total": time.perf_counter() - t0},
+                               seeds={**nominal.seeds, "robust_samples": robust})
+    if out is not None:
+        path = cert.write(out)
+        cert = dataclasses.replace(cert, path=path)
+    return cert
