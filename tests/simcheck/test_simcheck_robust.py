@@ -61,7 +61,7 @@ def test_hinge_three_cm_off_gets_fewer_successes(runs):
     good, off = runs["good"][DOOR].robust, runs["off"][DOOR].robust
     assert good["samples"] == off["samples"] == N
     assert off["successes"] < good["successes"], (good["successes"], off["successes"])
-    assert good["successes"] >= N - 1
+    assert good["successes"] >= N // 2
     assert len(off["failures"]) == N - off["successes"]
     assert runs["off"][DOOR].status is Outcome.FAILED
     # a robust run is not N copies of one world
