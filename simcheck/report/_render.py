@@ -24,7 +24,8 @@ from ._part_tree_image import png_of_part_trees, trees_from_scene_json
 from ._primitives import solids_from_truth, solids_from_urdf
 from ._scan_image import load_scan, png_of_scan
 from ._scene_image import png_of_scenes, view_azimuth
-from ._tables import criteria_table, key_value_table, metrics_table, pipeline_table, uncertainty_table
+from ._tables import (criteria_table, key_value_table, metrics_table, pipeline_table, robust_table,
+                      uncertainty_table)
 from ._tasks import executed_urdf, task_figures
 
 __all__ = ["render_report", "read_json"]
@@ -132,7 +133,7 @@ def _tasks_section(lay: DemoLayout, cert: dict | None) -> str:
                                                          executed_urdf(lay, cert)))
         if not figs:
             figs = note(f"No recorded rollout for {key} (the task was not executed).", "info")
-        parts.append(f'<div class="task" id="task-{esc(key)}">{head}{criteria_table(key, criteria)}{figs}</div>')
+        parts.append(f'<div class="task" id="task-{esc(key)}">{head}{criteria_table(key, criteria)}{robust_table(key, task.get("robust"))}{figs}</div>')
     where = (f"<p>Each task was planned on <code>{esc(Path(str(cert.get('scene', '?'))).name)}</code>"
              + (f" and executed with physics on <code>{esc(Path(str(cert['against'])).name)}</code> "
                 "(the reference: joints matched by name)" if cert.get("against") else " and executed on it")

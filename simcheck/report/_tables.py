@@ -12,7 +12,7 @@ from collections.abc import Mapping
 from ._html import badge, esc, num, table
 
 __all__ = ["flatten_numbers", "pipeline_table", "metrics_table", "criteria_table", "key_value_table",
-           "uncertainty_table"]
+           "uncertainty_table", "robust_table"]
 
 
 def flatten_numbers(doc: object, prefix: str = "") -> list[tuple[str, object]]:
@@ -143,3 +143,25 @@ def uncertainty_table(graph: Mapping) -> str:
             "<p>RMS spread over resamplings of the scan points (recon's bootstrap): axis direction, axis "
             "position across the axis, upper limit.</p>"
             + table(["joint", "type", "axis", "position", "upper limit", "samples", "method"], rows, "uncertainty"))
+
+
+def robust_table(task_key: str, robust: Mapping | None) -> str:
+    """A task's ``robust`` block (``--robust N``): successes, the 95 % lower bound, the worst margin of each
+    criterion and one row per failing sample (replay it with ``--replay-sample``); "" without one."""
+    if not isinstance(robust, Mapping):
+        return ""
+    key = f"cert.{task_key}.robust"
+    head = (f"<p>Robust: {num(robust.get('successes'), key + '.successes')} of "
+            f"{num(robust.get('samples'), key + '.samples')} sampled worlds opened it; with "
+            f"{num(robust.get('confidence'), key + '.confidence')} confidence at least "
+            f"{num(robust.get('success_lower_bound'), key + '.success_lower_bound')} of the worlds consistent "
+            "with the scan do.</p>")
+    worst = robust.get("worst_margins") or {}
+    out = head + table(["criterion", "worst margin over the samples"],
+                       [[esc(k), num(v, f"{key}.worst_margins.{k}")] for k, v in worst.items()], "robust")
+    fails = [f for f in robust.get("failures", []) if isinstance(f, Mapping)]
+    if fails:
+        out += table(["failing sample", "outcome", "reason (replay with --replay-sample)"],
+                     [[esc(f.get("sample")), esc(f.get("outcome", "")), esc(f.get("reason", ""))] for f in fails],
+                     "robust")
+    return out
