@@ -289,7 +289,8 @@ def _rebuilt(objects, walls, shapes: list[SceneShape]):
             else:
                 parts.append(dataclasses.replace(p, shapes=tuple(new)))
         new_objects.append(dataclasses.replace(obj, parts=tuple(parts)))
-    new_walls = tuple(Wall(w.name, w.size, by_link[w.name][0].T_world_part, w.n_points) for w in walls)
+    new_walls = tuple(Wall(w.name, by_link[w.name][0].size, by_link[w.name][0].T_world_part, w.n_points)
+                      for w in walls)
     return tuple(new_objects), new_walls
 
 

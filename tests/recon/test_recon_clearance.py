@@ -91,3 +91,18 @@ def test_disabled_stage_returns_the_scene_unchanged():
     obj = _cabinet(door_back_y=0.008)
     (new,), _ = cleared_scene([obj], (), ClearanceConfig(enabled=False))
     assert new is obj
+
+
+def test_two_walls_crossing_at_a_corner_are_cut_apart():
+    def wall(name, normal, centre, length):
+        T = np.eye(4)
+        n = np.asarray(normal, float)
+        T[:3, 0], T[:3, 1], T[:3, 2], T[:3, 3] = n, np.cross([0, 0, 1.0], n), [0, 0, 1.0], centre
+        return Wall(name, [0.1, length, 2.4], T)
+
+    walls = (wall("wall0", [0, -1.0, 0], [0.0, 2.05, 1.2], 4.0),      # y = 2.0 .. 2.1, x = -2 .. 2
+             wall("wall1", [-1.0, 0, 0], [2.03, 0.0, 1.2], 4.2))      # x = 1.98 .. 2.08, y = -2.1 .. 2.1
+    _, cleared = cleared_scene([], walls, ClearanceConfig())
+    a, b = (Primitive(PrimitiveKind.BOX, w.size, w.T_world_wall) for w in cleared)
+    assert separation(a, b) >= -1e-9
+    assert sum(not np.allclose(w.size, c.size) for w, c in zip(walls, cleared)) == 1      # one of them shortened
