@@ -15,8 +15,8 @@ import numpy as np
 from simcheck.config import DEFAULT_CRITERIA, CriteriaConfig
 from simcheck.rollout import Rollout
 
-__all__ = ["CriterionResult", "opened_amount", "opened_fraction", "opened_overshoot", "handle_path_deviation", "settled_linear_speed",
-           "settled_angular_speed", "unexpected_contact_force", "unexpected_contact_depth", "grasp_held", "grasp_force",
+__all__ = ["CriterionResult", "at_release", "opened_amount", "opened_fraction", "opened_overshoot", "handle_path_deviation", "settled_linear_speed",
+           "settled_angular_speed", "unexpected_contact_force", "unexpected_contact_depth", "grasp_held", "grasp_force", "interaction_force",
            "robot_joint_limits", "plan_found", "plan_collision_free", "rollout_criteria", "FLOOR"]
 
 FLOOR = "floor"
@@ -143,23 +143,34 @@ def handle_path_deviation(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> C
     return _judge("handle_path_deviation", value, c.handle_path_tolerance, "<=", "m", desc, detail)
 
 
-def _final_speed(values: np.ndarray) -> float:
-    return float(values[-1]) if len(values) else math.inf
+def at_release(r: Rollout) -> int:
+    """Index of the sample at which the moved part must be at rest: the last sample of the release
+    segment (the fingers have opened and the robot has held still for its settle time), before the
+    retreat and the final hold; the last sample when the plan has no release segment."""
+    release = np.flatnonzero(r.in_segment("release"))
+    return int(release[-1]) if len(release) else r.n - 1
 
 
 def settled_linear_speed(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
-    """Linear speed, m/s, of the moved link at the end of the rollout."""
-    v = _final_speed(r.link_speed)
+    """Linear speed, m/s, of the moved link right after release (:func:`at_release`)."""
+    if not r.n:
+        return _judge("settled_linear_speed", math.inf, c.settled_linear_speed, "<=", "m/s", "", "no samples")
+    k = at_release(r)
+    v = float(r.link_speed[k])
     return _judge("settled_linear_speed", v, c.settled_linear_speed, "<=", "m/s",
-                  "speed of the moved link at the end", f"link {r.moving_link} still moves at {v:.3f} m/s at the end")
+                  "speed of the moved link right after the gripper let go",
+                  f"link {r.moving_link} still moved at {v:.3f} m/s at t={r.t[k]:.2f} s, after the gripper let go")
 
 
 def settled_angular_speed(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
-    """Angular speed, rad/s, of the moved link at the end of the rollout."""
-    w = _final_speed(r.link_angular_speed)
+    """Angular speed, rad/s, of the moved link right after release (:func:`at_release`)."""
+    if not r.n:
+        return _judge("settled_angular_speed", math.inf, c.settled_angular_speed, "<=", "rad/s", "", "no samples")
+    k = at_release(r)
+    w = float(r.link_angular_speed[k])
     return _judge("settled_angular_speed", w, c.settled_angular_speed, "<=", "rad/s",
-                  "angular speed of the moved link at the end",
-                  f"link {r.moving_link} still turns at {w:.3f} rad/s at the end")
+                  "angular speed of the moved link right after the gripper let go",
+                  f"link {r.moving_link} still turned at {w:.3f} rad/s at t={r.t[k]:.2f} s, after the gripper let go")
 
 
 def _unexpected(r: Rollout) -> np.ndarray:
@@ -236,15 +247,46 @@ def grasp_force(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionRe
 
 
 def robot_joint_limits(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
-    """Largest excursion of a robot joint beyond its URDF limits, rad or m."""
-    over = np.maximum(r.robot_q - r.robot_upper[None, :], r.robot_lower[None, :] - r.robot_q)
-    over = np.where(np.isfinite(over), over, 0.0)
-    value = float(max(over.max(), 0.0)) if over.size else 0.0
-    j = int(np.unravel_index(np.argmax(over), over.shape)[1]) if over.size else 0
+    """Largest excursion, rad or m, of a robot joint beyond its URDF limits, measured or COMMANDED: the
+    simulated joint stops at its limit, a real arm faults when a plan drives a joint past it."""
+    def excursion(q):
+        over = np.maximum(q - r.robot_upper[None, :], r.robot_lower[None, :] - q)
+        return np.where(np.isfinite(over), over, 0.0)
+
+    measured, commanded = excursion(r.robot_q), excursion(np.asarray(r.robot_q_target, dtype=float))
+    if not measured.size:
+        return _judge("robot_joint_limits", 0.0, c.joint_limit_tolerance, "<=", "rad|m",
+                      "largest excursion of a robot joint beyond its limits (measured or commanded)", "")
+    worst = measured if measured.max() >= commanded.max() else commanded
+    value = float(max(worst.max(), 0.0))
+    k, j = np.unravel_index(np.argmax(worst), worst.shape)
     name = r.robot_joint_names[j] if r.robot_joint_names else "?"
+    how = "went" if worst is measured else "was commanded"
     return _judge("robot_joint_limits", value, c.joint_limit_tolerance, "<=", "rad|m",
-                  "largest excursion of a robot joint beyond its limits",
-                  f"robot joint {name} went {value:.3f} beyond its limits")
+                  "largest excursion of a robot joint beyond its limits (measured or commanded)",
+                  f"robot joint {name} {how} {value:.3f} beyond its limits at t={r.t[k]:.2f} s")
+
+
+def interaction_force(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """Largest force, N, the robot applied to the task's part other than by squeezing it between its
+    fingers: per sample, the grasp's force (50 ms mean) plus the contact forces of every robot link that
+    is not a finger on the moving link or the handle. Threshold: what the gripper holds
+    (``r.holding_force``): the robot's spec bounds what it applies to the object."""
+    total = np.where(r.grasp_active | (r.grasp_force > 0), r.grasp_force, 0.0).astype(float)
+    on_part = np.isin(r.contact_scene_link, [r.moving_link, r.handle_link]) & ~np.isin(r.contact_robot_link,
+                                                                                          list(r.finger_links))
+    pushed = np.zeros(r.n)
+    np.add.at(pushed, r.contact_sample[on_part], r.contact_force[on_part])
+    total = total + pushed
+    k = int(np.argmax(total)) if r.n else 0
+    value = float(total[k]) if r.n else 0.0
+    links = sorted(set(r.contact_robot_link[on_part & (r.contact_sample == k)]))
+    seg = r.segment_names[r.segment[k]] if r.n and 0 <= r.segment[k] < len(r.segment_names) else "settle"
+    return _judge("interaction_force", value, r.holding_force, "<=", "N",
+                  "largest force the robot applied to the part (grasp plus pushes, fingers' squeeze aside)",
+                  f"the robot applied {value:.0f} N to {r.moving_link} at t={r.t[k]:.2f} s during {seg} "
+                  f"(grasp {total[k] - pushed[k]:.0f} N" + (f", pushed by {', '.join(links)} {pushed[k]:.0f} N"
+                                                            if links else "") + f"); at most {r.holding_force:.0f} N")
 
 
 def plan_found(found: bool, reason: str = "") -> CriterionResult:
@@ -261,6 +303,6 @@ def plan_collision_free(max_depth: float, detail: str, c: CriteriaConfig = DEFAU
 
 def rollout_criteria(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> tuple[CriterionResult, ...]:
     """Every rollout criterion, in the order a failure reason lists them (most telling first)."""
-    return (grasp_held(r, c), grasp_force(r, c), opened_fraction(r, c), opened_overshoot(r, c), handle_path_deviation(r, c), unexpected_contact_force(r, c),
-            unexpected_contact_depth(r, c), settled_linear_speed(r, c), settled_angular_speed(r, c),
-            robot_joint_limits(r, c))
+    return (grasp_held(r, c), grasp_force(r, c), opened_fraction(r, c), opened_overshoot(r, c),
+            handle_path_deviation(r, c), unexpected_contact_force(r, c), unexpected_contact_depth(r, c), interaction_force(r, c), settled_linear_speed(r, c),
+            settled_angular_speed(r, c), robot_joint_limits(r, c))

@@ -158,6 +158,7 @@ class _Recorder:
         r["t"].append(self.t)
         r["segment"].append(self.segment)
         r["robot_q"].append(w.robot_q())
+        r["robot_q_target"].append(w.robot_q_target())
         r["object_q"].append(q)
         r["object_qd"].append(qd)
         T_handle = w.scene_link_pose(self.handle)
@@ -315,6 +316,7 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
         link_speed=np.asarray(rows["link_speed"]), link_angular_speed=np.asarray(rows["link_angular_speed"]),
         grasp_active=np.asarray(rows["grasp_active"], dtype=bool), grasp_force=np.asarray(rows["grasp_force"]),
         grasp_turn=np.asarray(rows["grasp_turn"]), opening_type=opening_type,
+        robot_q_target=np.asarray(rows["robot_q_target"]), finger_links=tuple(robot.finger_links),
         opening_axis=None if opening_axis is None else np.asarray(opening_axis, dtype=float).reshape(3),
         holding_force=float(rec.holding_force),
         finger_q=np.asarray(rows["finger_q"]).reshape(len(rows["t"]), -1),

@@ -22,7 +22,8 @@ __all__ = ["Rollout", "ROLLOUT_FORMAT"]
 ROLLOUT_FORMAT = "partscene.rollout/1"
 
 _META = ("joint", "moving_link", "handle_link", "robot_joint_names", "segment_names", "gripper_links",
-         "requested_amount", "object_q0", "grasp_note", "time_step", "holding_force", "opening_type")
+         "requested_amount", "object_q0", "grasp_note", "time_step", "holding_force", "opening_type",
+         "finger_links")
 
 
 @dataclass(frozen=True)
@@ -55,6 +56,8 @@ class Rollout:
             ``PhysicsConfig.grasp_force_window``) of the norm of its force since the previous sample, N;
             0 while not grasped.
         holding_force: the force the robot's gripper holds, N (its ``GripperModel``).
+        robot_q_target: (n, dof) the robot joint positions commanded at that instant (the plan's targets).
+        finger_links: the robot's finger links (a subset of ``gripper_links``).
         grasp_turn: (n,) angle, rad, by which the handle has turned in the fingers since the grasp.
         opening_type, opening_axis: how the opening is measured: "prismatic" (the handle's displacement
             along ``opening_axis``, m) or "revolute" (its rotation about ``opening_axis``, rad), the
@@ -108,6 +111,8 @@ class Rollout:
     wall_time: float = 0.0
     grasp_turn: np.ndarray | None = None
     opening_type: str = ""
+    robot_q_target: np.ndarray | None = None
+    finger_links: tuple[str, ...] = ()
     opening_axis: np.ndarray | None = None
     holding_force: float = float("nan")
 
@@ -116,11 +121,13 @@ class Rollout:
         for name in ("grasp_turn",):          # rollouts recorded before the gripper model
             if getattr(self, name) is None:
                 object.__setattr__(self, name, np.zeros(n))
+        if self.robot_q_target is None:
+            object.__setattr__(self, "robot_q_target", np.full(np.shape(self.robot_q), np.nan))
         if self.opening_axis is None:
             object.__setattr__(self, "opening_axis", np.full(3, np.nan))
         for name in ("segment", "robot_q", "object_q", "object_qd", "T_world_handle", "tool_pos", "grasp_point",
                      "planned_tool_pos", "planned_object_q", "link_speed", "link_angular_speed", "grasp_active",
-                     "grasp_force", "grasp_turn", "finger_q", "finger_contacts"):
+                     "grasp_force", "grasp_turn", "robot_q_target", "finger_q", "finger_contacts"):
             if len(getattr(self, name)) != n:
                 raise RolloutFormatError(f"rollout of joint {self.joint!r}: {name} has {len(getattr(self, name))} "
                                          f"samples, t has {n}")

@@ -522,6 +522,12 @@ class World:
         states = pb.getJointStates(self.robot, self._f_idx, physicsClientId=self.client)
         return np.array([s[0] for s in states], dtype=float)
 
+    def robot_q_target(self) -> np.ndarray:
+        """(dof,) the last position targets sent to the controlled joints (:meth:`command_robot`; the
+        current positions before any command)."""
+        target = getattr(self, "_q_target", None)
+        return self.robot_q() if target is None else target.copy()
+
     def robot_limits(self) -> tuple[np.ndarray, np.ndarray]:
         """(lower, upper) (dof,) URDF limits of the controlled joints (+-inf where the joint has none)."""
         lo, hi = [], []
@@ -550,6 +556,7 @@ class World:
     def command_robot(self, q: np.ndarray, qd: np.ndarray) -> None:
         """Position-control targets for the controlled joints: ``q`` (dof,), feed-forward ``qd`` (dof,)."""
         gain = self.config.robot_position_gain
+        self._q_target = np.array(q, dtype=float)
         pb.setJointMotorControlArray(self.robot, self._q_idx, pb.POSITION_CONTROL, targetPositions=list(map(float, q)),
                                      targetVelocities=list(map(float, qd)), forces=self._forces,
                                      positionGains=[gain] * len(q), velocityGains=[1.0] * len(q),

@@ -49,7 +49,8 @@ def good_rollout(amount: float = 0.3, n_per_segment: int = 20, seed: int = 0) ->
         contact_scene_link=np.array(["cabinet1_handle3", "cabinet1_handle3"]), contact_force=np.array([40.0, 40.0]),
         contact_depth=np.array([0.001, 0.001]), object_contact_sample=np.zeros(0, int),
         object_contact_link=np.zeros(0, str), object_contact_force=np.zeros(0), wall_time=0.5,
-        grasp_turn=np.zeros(n), holding_force=112.0)
+        grasp_turn=np.zeros(n), holding_force=112.0, robot_q_target=robot_q.copy(),
+        finger_links=("finger_a", "finger_b"))
 
 
 def with_(r: Rollout, **changes) -> Rollout:

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from simcheck.config import CriteriaConfig
-from simcheck.criteria import (CriterionResult, grasp_held, handle_path_deviation, opened_fraction,
+from simcheck.criteria import (CriterionResult, at_release, grasp_force, grasp_held, interaction_force,
+                               opened_overshoot, handle_path_deviation, opened_fraction,
                                plan_collision_free, plan_found, robot_joint_limits, rollout_criteria,
                                settled_angular_speed, settled_linear_speed, unexpected_contact_depth,
                                unexpected_contact_force)
@@ -70,17 +71,26 @@ def test_handle_path_deviation_does_not_pass_a_handle_that_stays_put(good):
     assert not r.passed and r.value == pytest.approx(0.3, abs=2e-3)
 
 
-def test_settled_linear_speed_fails_when_the_link_still_moves(good):
+def test_settled_linear_speed_fails_when_the_link_still_moves_after_release(good):
     v = good.link_speed.copy()
-    v[-1] = 0.25
+    k = at_release(good)
+    assert good.segment[k] == 3 and good.segment[k + 1] == 4      # the last sample of "release"
+    v[k] = 0.25
     r = settled_linear_speed(with_(good, link_speed=v))
-    assert not r.passed and r.margin == pytest.approx(0.1 - 0.25)
-    assert "cabinet1_drawer2 still moves at 0.250 m/s" in r.detail
+    assert not r.passed and r.margin == pytest.approx(0.05 - 0.25)
+    assert "cabinet1_drawer2 still moved at 0.250 m/s" in r.detail and "after the gripper let go" in r.detail
+
+
+def test_settled_speed_is_read_before_the_final_hold(good):
+    v = good.link_speed.copy()
+    v[at_release(good)] = 0.25
+    v[-1] = 0.0                                                    # at rest at the end: still failed
+    assert not settled_linear_speed(with_(good, link_speed=v)).passed
 
 
 def test_settled_angular_speed_fails_when_the_link_still_turns(good):
     w = good.link_angular_speed.copy()
-    w[-1] = 1.5
+    w[at_release(good)] = 1.5
     r = settled_angular_speed(with_(good, link_angular_speed=w))
     assert not r.passed and r.value == pytest.approx(1.5)
 
@@ -147,6 +157,68 @@ def test_robot_joint_limits_ignores_unlimited_joints(good):
     r = robot_joint_limits(with_(good, robot_q=q, robot_lower=np.array([-1, -1, -1, -np.inf]),
                                  robot_upper=np.array([1, 1, 1, np.inf])))
     assert r.passed
+
+
+def test_robot_joint_limits_fails_when_a_joint_is_commanded_past_its_limit(good):
+    target = good.robot_q.copy()
+    target[10, 1] = 1.2                                   # the joint itself stopped at its limit
+    r = robot_joint_limits(with_(good, robot_q_target=target))
+    assert not r.passed and r.value == pytest.approx(0.2) and "robot joint y was commanded 0.200" in r.detail
+
+
+def test_grasp_force_fails_above_what_the_gripper_holds(good):
+    ok = grasp_force(good)
+    assert ok.passed and ok.value == pytest.approx(20.0) and ok.threshold == 112.0 and ok.unit == "N"
+    f = good.grasp_force.copy()
+    f[np.flatnonzero(good.grasp_active)[5]] = 150.0
+    bad = grasp_force(with_(good, grasp_force=f))
+    assert not bad.passed and bad.margin == pytest.approx(112.0 - 150.0) and "150 N through the grasp" in bad.detail
+
+
+def test_grasp_force_without_a_grasp_is_not_measured(good):
+    r = grasp_force(with_(good, grasp_active=np.zeros_like(good.grasp_active), grasp_force=np.zeros(good.n)))
+    assert not r.passed and r.value == math.inf and "never grasped" in r.detail
+
+
+def test_opened_overshoot_fails_past_the_request(good):
+    assert opened_overshoot(good).passed and opened_overshoot(good).value == 0.0
+    s = good.object_q * 1.25
+    T = good.T_world_handle.copy()
+    T[:, 0, 3] = 1.0 + s
+    r = opened_overshoot(with_(good, object_q=s, T_world_handle=T))
+    assert not r.passed and r.value == pytest.approx(0.25) and "25% past" in r.detail
+
+
+def test_opened_fraction_is_measured_along_the_estimates_axis(good):
+    """A reference whose joint axis is the opposite (-x, range negative): its raw value went -0.3, its
+    handle moved +0.3 along the estimate's +x: judged by the motion."""
+    flipped = with_(good, object_q=-good.object_q, opening_type="prismatic", opening_axis=np.array([1.0, 0, 0]))
+    r = opened_fraction(flipped)
+    assert r.passed and r.value == pytest.approx(1.0, abs=0.01) and "changed by -0.300" in r.detail
+    sideways = with_(good, opening_type="prismatic", opening_axis=np.array([0.0, 1.0, 0]))
+    assert not opened_fraction(sideways).passed           # it moved across the estimate's axis
+
+
+def test_opened_fraction_of_a_door_is_its_rotation_about_the_estimated_axis(good):
+    from scipy.spatial.transform import Rotation
+    th = np.clip(good.object_q / 0.3, 0, 1) * 1.2
+    T = np.repeat(np.eye(4)[None], good.n, axis=0)
+    T[:, :3, :3] = Rotation.from_rotvec(np.outer(-th, [0, 0, 1.0])).as_matrix()    # turns about -z
+    door = with_(good, object_q=th, T_world_handle=T, requested_amount=1.2, opening_type="revolute")
+    assert opened_fraction(with_(door, opening_axis=np.array([0, 0, -1.0]))).value == pytest.approx(1.0, abs=1e-6)
+    assert opened_fraction(with_(door, opening_axis=np.array([0, 0, 1.0]))).value == pytest.approx(-1.0, abs=1e-6)
+
+
+def test_interaction_force_adds_pushes_of_non_finger_links_to_the_grasp(good):
+    ok = interaction_force(good)                          # only the fingers touch the handle
+    assert ok.passed and ok.value == pytest.approx(20.0) and ok.threshold == 112.0
+    k = int(np.flatnonzero(good.grasp_active)[3])
+    pushed = with_(good, contact_sample=np.append(good.contact_sample, k),
+                   contact_robot_link=np.append(good.contact_robot_link, "hand"),
+                   contact_scene_link=np.append(good.contact_scene_link, "cabinet1_drawer2"),
+                   contact_force=np.append(good.contact_force, 100.0), contact_depth=np.append(good.contact_depth, 0.0))
+    r = interaction_force(pushed)
+    assert not r.passed and r.value == pytest.approx(120.0) and "pushed by hand 100 N" in r.detail
 
 
 def test_plan_found_and_plan_collision_free():

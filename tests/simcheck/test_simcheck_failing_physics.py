@@ -1,0 +1,128 @@
+"""Each rollout criterion FAILS in a real physics run (fixture gantry gripper + cabinet, hand-made plans).
+
+Small scenes, deterministic, a few seconds each: fingers closed on air in front of the bar, a pad on a
+flat drawer front, a pull the gripper cannot hold, a part still moving when the gripper lets go, a
+robot joint driven past its limit, a deep unexpected contact.
+"""
+
+import dataclasses
+import re
+
+import numpy as np
+import pytest
+
+from planners.robot import GripperModel
+from scenes.outcome import Outcome
+from simcheck.certification import certify
+from simcheck.execute import execute_task
+from simcheck.planned_task import PlannedTask
+from simcheck.world import World
+
+from simcheck_fixture_plans import (CABINET, DRAWER, ROBOT, TOOL_OFFSET, _seg, drawer_plan, fixture_planner,
+                                    line)
+
+BAR_FRONT_X = 0.30          # the fixture drawer's handle bar spans x 0.28-0.30 (closed drawer)
+FINGERTIP_REACH = 0.02      # the gantry's fingertips reach 2 cm past its tool frame along -x
+
+
+def _certify(plan, robot=ROBOT, scene=CABINET):
+    cert = certify(scene, [f"open-drawer:{DRAWER}"], robot=robot, images=False, planner=fixture_planner({DRAWER: plan}))
+    return cert[DRAWER]
+
+
+def test_fingers_closed_on_air_in_front_of_the_bar_make_no_grasp():
+    gap = 0.0007                                              # fingertips 0.7 mm in front of the bar
+    plan = drawer_plan(handle=(BAR_FRONT_X + FINGERTIP_REACH + gap, 0.0, 0.68))
+    with World(CABINET, ROBOT) as w:
+        r = execute_task(w, plan)
+    closing = r.in_segment("grasp")
+    assert (r.finger_contacts[closing] == 2).any()            # both fingers within 1 mm: the old rule grasped
+    assert not r.grasp_active.any() and r.grasp_note.startswith("no grasp: finger")
+    t = _certify(plan)
+    assert t.status is Outcome.FAILED
+    assert not t.criterion("grasp_held").passed and not t.criterion("opened_fraction").passed
+
+
+def test_a_pad_on_the_flat_drawer_front_makes_no_grasp():
+    # the drawer link itself is "the handle": the fingertips press on its front face 8 cm below the bar
+    plan = dataclasses.replace(drawer_plan(handle=(0.25 + FINGERTIP_REACH - 0.001, 0.0, 0.60)),
+                               grasp_link="cabinet1_drawer2")
+    t = _certify(plan)
+    assert t.status is Outcome.FAILED
+    held = t.criterion("grasp_held")
+    assert not held.passed and "off its pad" in held.detail
+    assert not t.criterion("opened_fraction").passed
+
+
+def test_a_pull_beyond_the_gripper_slips_the_handle_out():
+    weak = dataclasses.replace(ROBOT, gripper=GripperModel(grip_force=2.0, pad_friction=0.5))   # holds 2 N
+    t = _certify(drawer_plan(), robot=weak)
+    assert t.status is Outcome.FAILED
+    force = t.criterion("grasp_force")
+    assert not force.passed and force.threshold == pytest.approx(2.0) and force.value > 2.0
+    assert "slipped out of the fingers" in t.criterion("grasp_held").detail
+
+
+def test_a_wrong_axis_needs_more_than_the_gripper_holds():
+    t = _certify(drawer_plan(axis_deg=30.0))
+    assert t.status is Outcome.FAILED
+    force = t.criterion("grasp_force")
+    assert force.threshold == pytest.approx(GripperModel().holding_force)
+    assert not force.passed or "slipped" in t.criterion("grasp_held").detail
+    assert force.value < np.sqrt(3) * force.threshold     # each constraint row is capped at the bound
+
+
+def _tilted_drawer(tmp_path, slope, upper=1.0):
+    """The fixture cabinet with its drawer sliding out and up (axis (1, 0, slope)) over ``upper`` m:
+    closed, it rests on its stop; opened and let go, gravity slides it back."""
+    text = CABINET.read_text()
+    text, n = re.subn(r'(<joint name="cabinet1_drawer2_joint".*?<axis xyz=")1 0 0(".*?upper=")0.35',
+                      rf"\g<1>1 0 {slope}\g<2>{upper}", text)
+    assert n == 1
+    path = tmp_path / "tilted.urdf"
+    path.write_text(text)
+    return path
+
+
+def test_a_part_still_moving_when_the_gripper_lets_go_fails(tmp_path):
+    slope, amount = 0.08, 0.3
+    d = np.array([1.0, 0.0, slope]) / np.hypot(1.0, slope)
+    plan = drawer_plan(amount=amount)
+    grasp = plan.segments[1].q[-1]
+    s = np.linspace(0.0, amount, 31)
+    opened = grasp[None, :] + np.outer(s, [d[0], d[1], d[2], 0.0])
+    away = opened[-1] + [0.0, 0.0, 0.25, 0.0]             # retreat upward, out of the drawer's way
+    plan = dataclasses.replace(plan, segments=plan.segments[:2] + (
+        _seg("open", opened, "closed", s), _seg("release", opened[-1:], "open", [amount]),
+        _seg("retreat", line(opened[-1], away, 6), "open")))
+    t = _certify(plan, scene=_tilted_drawer(tmp_path, slope))
+    assert t.status is Outcome.FAILED
+    moving = t.criterion("settled_linear_speed")
+    assert not moving.passed and "after the gripper let go" in moving.detail
+    assert t.criterion("grasp_held").passed                 # it was opened as planned, then not at rest
+
+
+def test_a_robot_joint_driven_past_its_limit_fails():
+    plan = drawer_plan()
+    start = plan.segments[0].q[0]
+    high = start.copy()
+    high[2] = 1.75                                           # z_joint's upper limit is 1.6 m
+    plan = dataclasses.replace(plan, segments=(_seg("approach", np.concatenate([line(start, high, 8),
+                                                                                  line(high, plan.segments[0].q[-1], 8)]),
+                                                    "open"),) + plan.segments[1:])
+    t = _certify(plan)
+    assert t.status is Outcome.FAILED
+    lim = t.criterion("robot_joint_limits")
+    assert not lim.passed and "z_joint" in lim.detail and lim.value == pytest.approx(0.15, abs=0.01)
+
+
+def test_a_deep_unexpected_contact_fails():
+    plan = drawer_plan()
+    grasp_q = plan.segments[1].q[0]
+    inside = grasp_q + [-0.25, 0.0, 0.0, 0.0]                # the hand 25 cm inside the cabinet, through its front
+    above = inside + [0.0, 0.0, 0.5, 0.0]
+    approach = _seg("approach", np.concatenate([line(above, inside, 12), line(inside, grasp_q, 8)]), "open")
+    t = _certify(dataclasses.replace(plan, segments=(approach,) + plan.segments[1:]))
+    assert t.status is Outcome.FAILED
+    deep = t.criterion("unexpected_contact_depth")
+    assert not deep.passed and deep.value > 0.005 and "cabinet1" in deep.detail
