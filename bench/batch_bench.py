@@ -29,7 +29,7 @@ def _plain(tasks: list[tuple[Path, str]], out: Path) -> tuple[float, list, dict]
     import simcheck
 
     certs, stages = [], {"setup+write": [], "plan": [], "recheck": [], "execute": [], "total": []}
-    t_all = time.perf_counter()
+    t_all, cpu_all = time.perf_counter(), time.process_time()
     for i, (scene, task) in enumerate(tasks):
         t0 = time.perf_counter()
         cert = simcheck.certify(scene, [task], seed=0, out=out / f"plain{i}", images=False)
@@ -40,6 +40,7 @@ def _plain(tasks: list[tuple[Path, str]], out: Path) -> tuple[float, list, dict]
             stages[k].append(t.get(k, 0.0))
         stages["total"].append(wall)
         stages["setup+write"].append(wall - t.get("total", 0.0))
+    stages["cpu"] = [(time.process_time() - cpu_all) / len(tasks)]
     return time.perf_counter() - t_all, certs, {k: statistics.mean(v) for k, v in stages.items()}
 
 
@@ -97,7 +98,10 @@ def main(argv: list[str] | None = None) -> int:
     manifest = root / "manifest.jsonl"
     manifest.write_text("\n".join(lines) + "\n")
     n = len(tasks)
-    print(f"{n} tasks ({args.kitchens} kitchens, truth scenes), folder {root}")
+    import os
+
+    print(f"{n} tasks ({args.kitchens} kitchens, truth scenes), folder {root}; {os.cpu_count()} cores, load "
+          f"average {os.getloadavg()[0]:.1f} (wall-time rates and the speed-up mean little when it exceeds the cores)")
 
     plain_wall, plain, stages = _plain(tasks, root / "plain")
     img = _images_cost(*tasks[0], root / "plain")
@@ -113,10 +117,15 @@ def main(argv: list[str] | None = None) -> int:
     per_hour1, per_hour2 = n / (w1 / 3600), n / (w2 * 2 / 3600)
     row_s1 = statistics.mean(r["seconds"] for r in r1.rows if r["seconds"])
     overhead_total = w1 / plain_wall - 1
-    rss = [r["worker"]["peak_rss_mb"] for r in _records(root / "batch2", r2.rows)]
+    recs2 = _records(root / "batch2", r2.rows)
+    rss = [r["worker"]["peak_rss_mb"] for r in recs2]
+    cpu2 = sum(r.get("cpu_seconds", 0.0) for r in recs2)
+    cpu_per_hour = n / (cpu2 / 3600)
     print(f"\nbatch, 1 worker: {w1:.1f} s wall ({r1.totals}), {per_hour1:,.0f} certifications per core-hour")
     print(f"batch, 2 workers: {w2:.1f} s wall ({r2.totals}), {per_hour2:,.0f} certifications per core-hour")
-    print(f"speed-up on 2 cores: {w1 / w2:.2f}x")
+    print(f"speed-up on 2 cores: {w1 / w2:.2f}x (load average now {os.getloadavg()[0]:.1f})")
+    print(f"CPU time of the tasks in the workers (2-worker run): {cpu2 / n:.3f} s a task = {cpu_per_hour:,.0f} "
+          f"certifications per CPU-core-hour (plain certify: {stages['cpu']:.3f} s a task of process CPU time)")
     print(f"overhead over plain certify at 1 worker: {100 * overhead_total:+.1f}% of the wall time "
           f"(Ray start-up included); a task's own time in the batch {row_s1:.3f} s vs plain {stages['total']:.3f} s")
     print(f"resume of the finished batch: {wr:.2f} s = {100 * wr / w2:.1f}% of its first run "
@@ -125,7 +134,8 @@ def main(argv: list[str] | None = None) -> int:
     print(f"batch certificates equal to plain certify (criteria to 1e-9): 1 worker {same1} (max diff {d1:.2g}), "
           f"2 workers {same2} (max diff {d2:.2g})")
 
-    targets = [(f">= 5,000 certifications per core-hour (1 worker: {per_hour1:,.0f})", per_hour1 >= 5000),
+    targets = [(f">= 5,000 certifications per core-hour of task CPU time ({cpu_per_hour:,.0f})", cpu_per_hour >= 5000),
+               (f">= 5,000 certifications per core-hour (1 worker: {per_hour1:,.0f})", per_hour1 >= 5000),
                (f">= 5,000 certifications per core-hour (2 workers: {per_hour2:,.0f})", per_hour2 >= 5000),
                (f"speed-up on 2 cores >= 1.7x ({w1 / w2:.2f}x)", w1 / w2 >= 1.7),
                (f"overhead over plain certify <= 10% ({100 * overhead_total:+.1f}%)", overhead_total <= 0.10),

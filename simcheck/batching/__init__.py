@@ -110,15 +110,10 @@ def batch(manifest, out, *, workers: int | None = None, address: str | None = No
 def _run(jobs, store, settings, slots: int, progress: bool):
     from simcheck.batching.runner import run_jobs
 
-    bar = _bar(len(jobs)) if progress else None
-    try:
-        return run_jobs(jobs, store, settings, slots, bar)
-    finally:
-        if bar is not None:
-            bar.close()
+    return run_jobs(jobs, store, settings, slots, _bar if progress else None)
 
 
-def _bar(total: int):
+def _bar(total: int, done: int):
     from tqdm import tqdm
 
-    return tqdm(total=total, unit="task", desc="certifying", dynamic_ncols=True, disable=None)
+    return tqdm(total=total, initial=done, unit="task", desc="certifying", dynamic_ncols=True, disable=None)

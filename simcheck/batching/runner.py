@@ -241,9 +241,10 @@ class Progress:
     retried: int = 0
 
 
-def run_jobs(jobs: list[Job], store: Store, settings: RunSettings, slots: int, bar=None) -> Progress:
-    """Run every job not yet in ``store`` (at most ``slots`` in flight); returns the counts. ``bar``:
-    an object with ``update(n)`` and ``set_postfix_str(text)`` (a tqdm bar) or None."""
+def run_jobs(jobs: list[Job], store: Store, settings: RunSettings, slots: int, make_bar=None) -> Progress:
+    """Run every job not yet in ``store`` (at most ``slots`` in flight); returns the counts.
+    ``make_bar(total, done)``: a progress bar with ``update(n)``, ``set_postfix_str(text)`` and
+    ``close()`` (tqdm's), started at the jobs already done, or None for no bar."""
     progress = Progress()
     pending = []
     for job in jobs:
@@ -257,11 +258,20 @@ def run_jobs(jobs: list[Job], store: Store, settings: RunSettings, slots: int, b
             progress.computed += 1
         else:
             pending.append(job)
-    if bar is not None:
-        bar.update(len(jobs) - len(pending))
-        bar.set_postfix_str(_counts_text(progress.counts))
     if not pending:
         return progress
+    bar = make_bar(len(jobs), len(jobs) - len(pending)) if make_bar is not None else None
+    if bar is not None:
+        bar.set_postfix_str(_counts_text(progress.counts))
+    try:
+        _dispatch(pending, store, settings, slots, bar, progress)
+    finally:
+        if bar is not None:
+            bar.close()
+    return progress
+
+
+def _dispatch(pending: list[Job], store: Store, settings: RunSettings, slots: int, bar, progress: Progress) -> None:
     import ray
 
     from simcheck.batching.worker import certify_job
@@ -300,7 +310,6 @@ def run_jobs(jobs: list[Job], store: Store, settings: RunSettings, slots: int, b
                                 job.row["task"], now - t0)
                     ray.cancel(ref, force=True)
                     cancelled.add(ref)
-    return progress
 
 
 def _collect(ref, job: Job, store: Store, settings: RunSettings, cancelled: bool, pending: list) -> str | None:

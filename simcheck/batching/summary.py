@@ -23,7 +23,7 @@ __all__ = ["rows_from_store", "write_summary", "write_junit", "newly_failing", "
 
 SUMMARY_FORMAT = "partscene.batch-summary/1"
 _ROW_FIELDS = ("scene", "task", "status", "reason", "criteria", "failed_criteria", "start", "end", "seconds",
-               "attempts", "line", "key")
+               "cpu_seconds", "attempts", "line", "key")
 
 
 def rows_from_store(keys: list[str], store) -> list[dict]:

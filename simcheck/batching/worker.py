@@ -137,6 +137,7 @@ def certify_job(job: dict) -> dict:
         from simcheck.robot_spec_file import load_robot_spec
 
         holder["budget"] = Budget(job["timeout"], job["memory_mb"], on_kill)
+        cpu0 = time.process_time()
         with holder["budget"]:
             _fault(job.get("fault"))
             cert = certify(job["scene"], [job["task"]], against=job["against"], seed=job["seed"], out=tmp,
@@ -147,7 +148,8 @@ def certify_job(job: dict) -> dict:
 
         return record(Outcome(t.status.value).value, t.reason, certificate="certificate.json",
                       criteria={c.name: c.value for c in t.criteria}, failed_criteria=list(t.failed_criteria),
-                      seconds=t.timings.get("total"), amount=t.amount, unit=t.unit)
+                      seconds=t.timings.get("total"), cpu_seconds=time.process_time() - cpu0, amount=t.amount,
+                      unit=t.unit)
 
     try:
         store.put_result(job["key"], certified)
