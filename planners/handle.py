@@ -38,7 +38,7 @@ import numpy as np
 
 from planners.config import PlannerConfig
 from planners.errors import HandleNotFoundError
-from planners.scene_urdf import Geometry, SceneDescription, _rotation_about
+from scenes.description import R_about, SceneModel, Shape, ShapeKind
 from planners.task import OpenTask
 
 __all__ = ["HandleGrasp", "find_handle", "outward_direction"]
@@ -69,7 +69,7 @@ class HandleGrasp:
     source: str
 
 
-def _fixed_descendants(scene: SceneDescription, link: str) -> list[str]:
+def _fixed_descendants(scene: SceneModel, link: str) -> list[str]:
     out, stack = [], [link]
     while stack:
         cur = stack.pop()
@@ -80,7 +80,7 @@ def _fixed_descendants(scene: SceneDescription, link: str) -> list[str]:
     return out
 
 
-def outward_direction(scene: SceneDescription, joint: str, point_world: np.ndarray, values: dict,
+def outward_direction(scene: SceneModel, joint: str, point_world: np.ndarray, values: dict,
                       delta: float = 1e-4) -> np.ndarray:
     """``(3,)`` unnormalised velocity (world, per unit joint value) of a point rigidly attached to the joint's
     child, at the joint values ``values``; zero when the point lies on a hinge axis."""
@@ -95,7 +95,7 @@ def outward_direction(scene: SceneDescription, joint: str, point_world: np.ndarr
     return (p1 - p0)[:3] / (2 * delta)   # central difference: exact to O(delta^2)
 
 
-def _bar(geom: Geometry) -> tuple[np.ndarray | None, np.ndarray, float]:
+def _bar(geom: Shape) -> tuple[np.ndarray | None, np.ndarray, float]:
     """(long axis in geom frame or None, (3,) centre in geom frame, thickness) of a handle geometry."""
     if geom.kind == "box":
         size = np.asarray(geom.size)
@@ -103,10 +103,10 @@ def _bar(geom: Geometry) -> tuple[np.ndarray | None, np.ndarray, float]:
         axis = np.eye(3)[i] if size[i] > 1.5 * np.sort(size)[1] else None
         return axis, np.zeros(3), float(np.sort(size)[1] if axis is not None else np.min(size))
     if geom.kind == "cylinder":
-        r, _, ln = geom.size
+        r, ln = geom.radius, geom.length
         return (np.array([0.0, 0.0, 1.0]) if ln > 2 * r else None), np.zeros(3), 2 * r
     if geom.kind == "sphere":
-        return None, np.zeros(3), 2 * geom.size[0]
+        return None, np.zeros(3), float(geom.size[0])
     try:   # mesh: its bounding box
         import trimesh
         mesh = trimesh.load(geom.mesh, force="mesh")
@@ -129,17 +129,16 @@ def _outermost(scene, joint, cands, T_world_moving, values):
     return max(zip(cands, centres), key=lambda cc: (round(float(cc[1] @ n), 3), _extent(cc[0][1])))[0]
 
 
-def _depth_along(geom: Geometry, d: np.ndarray) -> float:
+def _depth_along(geom: Shape, d: np.ndarray) -> float:
     """Extent (m) of a handle geometry along the unit direction ``d`` (3,) given in the geometry's frame
     (a mesh: its bounding box; unreadable: infinite, so the depth limits nothing)."""
     d = np.abs(np.asarray(d, dtype=float))
     if geom.kind == "box":
         return float(d @ np.asarray(geom.size))
     if geom.kind == "cylinder":   # along local z: length there, diameter across
-        r, _, ln = geom.size
-        return float(ln * d[2] + 2 * r * np.hypot(d[0], d[1]))
+        return float(geom.length * d[2] + 2 * geom.radius * np.hypot(d[0], d[1]))
     if geom.kind == "sphere":
-        return 2.0 * float(geom.size[0])
+        return float(geom.size[0])
     try:
         import trimesh
         lo, hi = trimesh.load(geom.mesh, force="mesh").bounds * np.asarray(geom.size)
@@ -148,11 +147,22 @@ def _depth_along(geom: Geometry, d: np.ndarray) -> float:
     return float(d @ (hi - lo))
 
 
-def _extent(geom: Geometry) -> float:
-    return float(max(geom.size)) if geom.kind != "mesh" else 1.0
+def _extent(geom: Shape) -> float:
+    """Size (m) that ranks candidate geometries: a box's longest edge, the larger of a cylinder's radius and
+    length, a sphere's radius; 1 for a mesh."""
+    if geom.kind is ShapeKind.CYLINDER:
+        return max(geom.radius, geom.length)
+    if geom.kind is ShapeKind.SPHERE:
+        return geom.radius
+    return float(max(geom.size)) if geom.kind is ShapeKind.BOX else 1.0
 
 
-def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: PlannerConfig) -> HandleGrasp:
+def _name(cand) -> str:
+    """Lower-case name of a candidate ``(link, geometry, T_moving_geom, index)`` (``link_index`` if unnamed)."""
+    return (cand[1].name or f"{cand[0]}_{cand[3]}").lower()
+
+
+def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerConfig) -> HandleGrasp:
     """Find the handle of the part moved by ``task.joint`` with the scene at joint ``values``."""
     j = scene.joints[task.joint]
     moving = j.child
@@ -162,7 +172,7 @@ def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: Plan
 
     def geoms_of(link):
         T = np.linalg.solve(T_world_moving, scene.T_world_link(link, values))
-        return [(link, g, T @ g.T_link_geom) for g in scene.links[link].geometries]
+        return [(link, g, T @ g.T_link_shape, k) for k, g in enumerate(scene.links[link].collisions)]
 
     cands, source = [], ""
     if task.grasp_link is not None:
@@ -172,7 +182,7 @@ def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: Plan
             raise HandleNotFoundError(f"{where}: grasp_link {task.grasp_link!r} is not rigidly attached to "
                                       f"the moving link {moving!r}")
         cands, source = geoms_of(task.grasp_link), "grasp_link"
-        named = [c for c in cands if "handle" in c[1].name.lower()]
+        named = [c for c in cands if "handle" in _name(c)]
         cands = named or cands
     else:
         named_links = [ln for ln in fixed_below if "handle" in ln.lower()]
@@ -181,7 +191,7 @@ def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: Plan
         elif len(fixed_below) == 1:
             cands, source = geoms_of(fixed_below[0]), "fixed child"
         else:
-            cands = [c for ln in [moving] + fixed_below for c in geoms_of(ln) if "handle" in c[1].name.lower()]
+            cands = [c for ln in [moving] + fixed_below for c in geoms_of(ln) if "handle" in _name(c)]
             source = "named geometry"
     cands = [c for c in cands if c[1] is not None]
     if task.grasp_point is not None:
@@ -226,7 +236,7 @@ def find_handle(scene: SceneDescription, task: OpenTask, values: dict, cfg: Plan
         backoff = min(backoff, cfg.grasp_backoff_share * _depth_along(depth_geom[1], n_geom))
     frames = _grasp_frames(p_world, n, axis_world, task.kind, cfg.grasp_tilt, backoff)
     T_link = tuple(np.linalg.solve(T_world_moving, T) for T in frames)
-    geoms = frozenset((ln, g.index) for ln, g, _ in cands)
+    geoms = frozenset((c[0], c[3]) for c in cands)
     log.debug("%s: handle via %s at %s, outward %s", where, source, p_world.round(3), n.round(3))
     return HandleGrasp(moving, grasp_link, geoms, T_link, width, source)
 
@@ -254,9 +264,9 @@ def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kin
     R0 = np.column_stack([x, np.cross(z, x), z])
     rotations = [R0]
     if abs(x @ ez) < 0.5 and tilt > 0:   # horizontal bar: tilt the approach downward about the bar
-        Rt = _rotation_about(x, tilt)
+        Rt = R_about(x, tilt)
         if (Rt @ z) @ ez > z @ ez:
-            Rt = _rotation_about(x, -tilt)
+            Rt = R_about(x, -tilt)
         rotations = [Rt @ R0, R0]
     out = []
     for depth in (0.0, backoff):

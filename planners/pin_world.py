@@ -22,7 +22,8 @@ import pinocchio as pin
 
 from planners.errors import RobotDescriptionError, SceneURDFError
 from planners.robot import RobotSpec
-from planners.scene_urdf import SceneDescription, read_scene_urdf
+from planners.scene_urdf import read_scene_urdf
+from scenes.description import SceneModel
 
 __all__ = ["PlanningWorld", "RobotKinematics"]
 
@@ -160,7 +161,7 @@ class PlanningWorld:
 
     PREFIX = "scene::"
 
-    def __init__(self, robot: RobotKinematics, scene: SceneDescription, task_joint: str,
+    def __init__(self, robot: RobotKinematics, scene: SceneModel, task_joint: str,
                  handle_geoms: set, scene_state: dict | None = None, clearance: float = 0.0):
         self.robot = robot
         self.scene = scene

@@ -25,9 +25,10 @@ from planners.opening import plan_opening_constrained
 from planners.ompl_adapter import plan_joint_path
 from planners.pin_world import PlanningWorld, RobotKinematics
 from planners.robot import RobotSpec
-from planners.scene_urdf import SceneDescription, read_scene_urdf
+from planners.scene_urdf import read_scene_urdf
 from planners.stand import StandPose, find_stand_poses
 from planners.task import OpenTask, PlanResult, PlanStatus, Segment
+from scenes.description import SceneModel
 
 __all__ = ["plan_open_task", "default_amount", "robot_kinematics"]
 
@@ -46,7 +47,7 @@ def default_amount(kind: str, lower: float, upper: float, cfg: PlannerConfig) ->
     return cfg.drawer_fraction * span if kind == "drawer" else min(cfg.door_fraction * span, cfg.door_max)
 
 
-def _validate(scene: SceneDescription, task: OpenTask, s0: float, cfg: PlannerConfig) -> float:
+def _validate(scene: SceneModel, task: OpenTask, s0: float, cfg: PlannerConfig) -> float:
     """Check the task against the scene; return the amount to open (m or rad)."""
     where = f"{scene.path}: joint {task.joint!r}"
     if task.joint not in scene.joints:
@@ -57,7 +58,7 @@ def _validate(scene: SceneDescription, task: OpenTask, s0: float, cfg: PlannerCo
     if j.type == "fixed":
         raise TaskJointError(f"{where} is fixed: nothing to open as a {task.kind}")
     if j.type != want and not (task.kind == "door" and j.type == "continuous"):
-        raise TaskJointError(f"{where} is {j.type}, but a {task.kind} needs a {want} joint")
+        raise TaskJointError(f"{where} is {j.type.value}, but a {task.kind} needs a {want} joint")
     lower, upper = j.lower, j.upper
     if not math.isfinite(upper) or not math.isfinite(lower):
         lower, upper = s0, s0 + (cfg.door_max / cfg.door_fraction)

@@ -1,11 +1,12 @@
 """A sampled world as a scene URDF: the certified scene with one :class:`~simcheck.perturbations.Perturbation`
-applied (the input file is never modified). XML is edited as :mod:`simcheck.estimate_faults` does.
+applied (the input file is never modified). The scene model is edited as :mod:`simcheck.estimate_faults`
+does and written by :func:`scenes.description.write_urdf`.
 
 * the task joint's axis, hinge line and upper limit set to the perturbation's (world frame at q = 0); the
   moving part's geometry, inertia and child joints stay where they are (only the articulation changes);
 * the joint's ``<dynamics friction damping>``; the moving link's mass and inertia scaled;
-* every link fixed below the moving link whose name contains "handle": ``<contact><lateral_friction>``
-  set, and moved by ``handle_shift`` (world);
+* every link fixed below the moving link whose name contains "handle": its ``lateral_friction``
+  (``<contact><lateral_friction>``) set, and moved by ``handle_shift`` (world);
 * the robot's base error (dx, dy, dyaw about the ``pivot`` (x, y) -- where the robot stands): the whole
   scene moved by the inverse error, so the robot stands where it thinks it does relative to a scene that
   is elsewhere. A new root link ``robust_root`` holds the old root by a fixed joint ``robust_base_error``.
@@ -13,24 +14,21 @@ applied (the input file is never modified). XML is edited as :mod:`simcheck.esti
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ET
+import dataclasses
 from pathlib import Path
 
 import numpy as np
 
 from planners.scene_urdf import read_scene_urdf
-from simcheck.estimate_faults import _fmt, _joint, _move_joint_keep_geometry, _vec
+from scenes.description import (Dynamics, Joint, JointType, Limit, Link, SceneModel, urdf_text,
+                                write_urdf)
+from simcheck.estimate_faults import _move_joint_keep_geometry, _shifted
 from simcheck.perturbations import Perturbation
 
-__all__ = ["perturbed_scene_text", "write_perturbed_scene", "ROOT_LINK", "ROOT_JOINT"]
+__all__ = ["perturbed_scene", "perturbed_scene_text", "write_perturbed_scene", "ROOT_LINK", "ROOT_JOINT"]
 
 ROOT_LINK = "robust_root"
 ROOT_JOINT = "robust_base_error"
-
-
-def _child(root, j):
-    name = j.find("child").get("link")
-    return next(l for l in root.findall("link") if l.get("name") == name)
 
 
 def _T_error_inverse(base_error, pivot_xy) -> np.ndarray:
@@ -45,102 +43,67 @@ def _T_error_inverse(base_error, pivot_xy) -> np.ndarray:
     return T
 
 
-def perturbed_scene_text(src: str | Path, p: Perturbation, pivot_xy=(0.0, 0.0)) -> str:
-    """The URDF text of scene ``src`` with ``p`` applied (see the module docstring)."""
-    scene = read_scene_urdf(src)
-    tree = ET.parse(src)
-    root = tree.getroot()
-    j = _joint(root, p.joint)
-    sj = scene.joints[p.joint]
-    T_world_joint = scene.T_world_link(sj.parent) @ sj.T_parent_joint
+def _g6(x: float) -> float:
+    """``x`` to 6 significant digits (what a sampled friction or damping is worth)."""
+    return float(f"{float(x):.6g}")
+
+
+def perturbed_scene(src: str | Path, p: Perturbation, pivot_xy=(0.0, 0.0)) -> SceneModel:
+    """The scene model of ``src`` with ``p`` applied (see the module docstring)."""
+    model = read_scene_urdf(src)
+    j = model.joints[p.joint]
+    T_world_joint = model.T_world_link(j.parent) @ j.T_parent_joint
     R = T_world_joint[:3, :3]
     shift_world = np.asarray(p.origin) - T_world_joint[:3, 3]
+    limit = j.limit if j.limit is not None else Limit(0.0, 0.0, 100.0, 1.0)
+    changes = dict(axis=R.T @ np.asarray(p.axis), limit=dataclasses.replace(limit, upper=float(p.upper)),
+                   dynamics=Dynamics(damping=_g6(p.joint_damping), friction=_g6(p.joint_friction)))
     if np.linalg.norm(shift_world) > 0.0:
-        _move_joint_keep_geometry(root, j, R.T @ shift_world)
-    axis = j.find("axis")
-    if axis is None:
-        axis = ET.SubElement(j, "axis")
-    axis.set("xyz", _fmt(R.T @ np.asarray(p.axis)))
-    limit = j.find("limit")
-    if limit is None:
-        limit = ET.SubElement(j, "limit", lower="0", effort="100", velocity="1")
-    limit.set("upper", f"{p.upper:.9g}")
-    dyn = j.find("dynamics")
-    if dyn is None:
-        dyn = ET.SubElement(j, "dynamics")
-    dyn.set("friction", f"{p.joint_friction:.6g}")
-    dyn.set("damping", f"{p.joint_damping:.6g}")
-    link = _child(root, j)
-    inertial = link.find("inertial")
-    if inertial is not None:
-        mass = inertial.find("mass")
-        if mass is not None:
-            mass.set("value", f"{float(mass.get('value')) * p.mass_scale:.9g}")
-        inertia = inertial.find("inertia")
-        if inertia is not None:
-            for k in ("ixx", "iyy", "izz", "ixy", "ixz", "iyz"):
-                if inertia.get(k) is not None:
-                    inertia.set(k, f"{float(inertia.get(k)) * p.mass_scale:.9g}")
-    _perturb_handles(root, link.get("name"), p, R_world_part=R)
+        items = _move_joint_keep_geometry(model, j, R.T @ shift_world, **changes)
+    else:
+        items = [dataclasses.replace(j, **changes), model.links[j.child]]
+    link = items[1]
+    if link.inertial is not None:
+        items[1] = dataclasses.replace(link, inertial=dataclasses.replace(
+            link.inertial, mass=link.inertial.mass * p.mass_scale, inertia=link.inertial.inertia * p.mass_scale))
+    model = model.replaced(*items)
+    model = model.replaced(*_perturbed_handles(model, j.child, p, R_world_part=R))
     if any(abs(v) > 0.0 for v in p.base_error):
-        _move_scene(root, _T_error_inverse(p.base_error, pivot_xy))
-    return ET.tostring(root, encoding="unicode")
+        model = _moved_scene(model, _T_error_inverse(p.base_error, pivot_xy))
+    return model
 
 
-def _perturb_handles(root, part: str, p: Perturbation, R_world_part: np.ndarray) -> None:
+def perturbed_scene_text(src: str | Path, p: Perturbation, pivot_xy=(0.0, 0.0)) -> str:
+    """The URDF text of scene ``src`` with ``p`` applied (mesh paths absolute)."""
+    return urdf_text(perturbed_scene(src, p, pivot_xy))
+
+
+def _perturbed_handles(model: SceneModel, part: str, p: Perturbation, R_world_part: np.ndarray) -> list:
     """Handles fixed (at any depth) below link ``part``: friction set, moved by ``p.handle_shift`` (world)."""
-    joints = root.findall("joint")
-    stack = [part]
+    out, stack = [], [part]
     while stack:
         parent = stack.pop()
-        for h in joints:
-            if h.find("parent").get("link") != parent or h.get("type") != "fixed":
+        for h in model.child_joints(parent):
+            if h.type is not JointType.FIXED:
                 continue
-            child = h.find("child").get("link")
-            stack.append(child)
-            if "handle" not in child.lower():
+            stack.append(h.child)
+            if "handle" not in h.child.lower():
                 continue
-            link = _child(root, h)
-            contact = link.find("contact")
-            if contact is None:
-                contact = ET.SubElement(link, "contact")
-            lat = contact.find("lateral_friction")
-            if lat is None:
-                lat = ET.SubElement(contact, "lateral_friction")
-            lat.set("value", f"{p.handle_friction:.6g}")
+            out.append(dataclasses.replace(model.links[h.child], lateral_friction=_g6(p.handle_friction)))
             if parent == part and any(abs(v) > 0.0 for v in p.handle_shift):
-                o = h.find("origin")
-                if o is None:
-                    o = ET.SubElement(h, "origin")
-                o.set("xyz", _fmt(_vec(o, "xyz") + R_world_part.T @ np.asarray(p.handle_shift)))
+                out.append(dataclasses.replace(
+                    h, T_parent_joint=_shifted(h.T_parent_joint, R_world_part.T @ np.asarray(p.handle_shift))))
+    return out
 
 
-def _move_scene(root, T: np.ndarray) -> None:
-    """Hang the whole scene from a new root link by a fixed joint at pose ``T`` (4, 4)."""
-    from scipy.spatial.transform import Rotation
-
-    children = {j.find("child").get("link") for j in root.findall("joint")}
-    old_root = next(l.get("name") for l in root.findall("link") if l.get("name") not in children)
-    root.insert(0, ET.Element("link", name=ROOT_LINK))
-    jt = ET.SubElement(root, "joint", name=ROOT_JOINT, type="fixed")
-    ET.SubElement(jt, "parent", link=ROOT_LINK)
-    ET.SubElement(jt, "child", link=old_root)
-    ET.SubElement(jt, "origin", xyz=_fmt(T[:3, 3]), rpy=_fmt(Rotation.from_matrix(T[:3, :3]).as_euler("xyz")))
+def _moved_scene(model: SceneModel, T: np.ndarray) -> SceneModel:
+    """The whole scene hung from a new root link by a fixed joint at pose ``T`` (4, 4)."""
+    return SceneModel(model.name, [Link(ROOT_LINK)] + list(model.links.values()),
+                      list(model.joints.values()) + [Joint(ROOT_JOINT, JointType.FIXED, ROOT_LINK, model.root, T)],
+                      model.materials, model.path)
 
 
 def write_perturbed_scene(src: str | Path, p: Perturbation, out: str | Path, pivot_xy=(0.0, 0.0)) -> Path:
-    """Write :func:`perturbed_scene_text` to ``out`` (atomically) and return its path. Relative mesh paths
-    are resolved against ``src``'s folder, so ``out`` may live elsewhere."""
-    text = perturbed_scene_text(src, p, pivot_xy)
-    root = ET.fromstring(text)
-    base = Path(src).resolve().parent
-    for mesh in root.iter("mesh"):
-        fn = mesh.get("filename", "")
-        if fn and "://" not in fn and not Path(fn).is_absolute():
-            mesh.set("filename", str((base / fn).resolve()))
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = out.with_suffix(out.suffix + ".tmp")
-    tmp.write_text(ET.tostring(root, encoding="unicode"))
-    tmp.replace(out)
-    return out
+    """Write the perturbed scene to ``out`` (atomically) and return its path. Mesh paths are absolute, so
+    ``out`` may live elsewhere than ``src``."""
+    return write_urdf(perturbed_scene(src, p, pivot_xy), out)

@@ -11,7 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from planners.scene_urdf import SceneDescription, read_scene_urdf
+from planners.scene_urdf import read_scene_urdf
+from scenes.description import SceneModel
 from planners.errors import SceneURDFError
 from simcheck.errors import SceneLoadError
 
@@ -40,7 +41,7 @@ class SceneJoint:
         return "m" if self.type == "prismatic" else "rad"
 
 
-def _read(path: str | Path) -> SceneDescription:
+def _read(path: str | Path) -> SceneModel:
     if not Path(path).is_file():
         raise SceneLoadError(f"scene URDF {path} does not exist")
     try:
@@ -65,7 +66,7 @@ def read_scene_joints(path: str | Path) -> dict[str, SceneJoint]:
     out = {}
     for name, j in scene.joints.items():
         T_world_joint = scene.T_world_link(j.parent) @ j.T_parent_joint
-        out[name] = SceneJoint(name, j.type, j.parent, j.child,
+        out[name] = SceneJoint(name, j.type.value, j.parent, j.child,
                                j.lower if np.isfinite(j.lower) else 0.0, j.upper if np.isfinite(j.upper) else 0.0,
                                T_world_joint[:3, :3] @ j.axis, T_world_joint[:3, 3].copy())
     return out

@@ -4,7 +4,7 @@ A :class:`World` owns one PyBullet client (DIRECT unless ``gui=True``; never a m
 a floor plane, the scene and the robot URDF with a fixed base at the world origin (a mobile base is
 modelled by the robot's base joints). The scene is loaded as separate bodies, not as one multibody: each
 never-moving link is a static single-link body and each articulated subtree (a drawer or door with its
-handle) a small fixed-base body (:func:`_split_scene`); Bullet then neither integrates nor collides
+handle) a small fixed-base body (:mod:`simcheck.scene_bodies`); Bullet then neither integrates nor collides
 static parts with each other (kitchen seed 0: execution 1.2x faster than with one multibody). Link and
 joint names are kept (a name map inside this module). On load it
 
@@ -36,7 +36,9 @@ import numpy as np
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
 from simcheck.errors import RobotBindingError, SceneLoadError, TaskSpecError
 from simcheck.grasp import FingerContacts
+from scenes.description import DescriptionError, read_urdf
 from simcheck.robot_binding import SimRobot
+from simcheck.scene_bodies import ANCHOR, scene_bodies
 
 
 @contextlib.contextmanager
@@ -89,7 +91,6 @@ __all__ = ["World", "JointInfo", "ContactPoint", "display_available", "pybullet_
 log = logging.getLogger(__name__)
 
 FLOOR = "floor"
-_ANCHOR = "__partscene_anchor__"   # empty root link of a split-off articulated subtree
 _JOINT_TYPES = {pb.JOINT_REVOLUTE: "revolute", pb.JOINT_PRISMATIC: "prismatic", pb.JOINT_FIXED: "fixed",
                 pb.JOINT_SPHERICAL: "spherical", pb.JOINT_PLANAR: "planar"}
 
@@ -156,105 +157,6 @@ def _quat_xyzw_from_R(R: np.ndarray) -> tuple[float, float, float, float]:
     return float(x), float(y), float(z), float(w)
 
 
-def _origin_T(elem) -> np.ndarray:
-    """(4, 4) transform of a URDF ``<origin xyz rpy>`` child of ``elem`` (identity when absent)."""
-    from scipy.spatial.transform import Rotation
-    T = np.eye(4)
-    o = elem.find("origin") if elem is not None else None
-    if o is not None:
-        T[:3, 3] = [float(v) for v in o.get("xyz", "0 0 0").split()]
-        T[:3, :3] = Rotation.from_euler("xyz", [float(v) for v in o.get("rpy", "0 0 0").split()]).as_matrix()
-    return T
-
-
-@dataclass(frozen=True)
-class _SceneBody:
-    """One PyBullet body of the split scene: its URDF text, the world pose of its root link frame (4, 4)
-    and whether it moves (an articulated subtree) or is a single never-moving link."""
-
-    urdf: str
-    T_world_root: np.ndarray
-    moving: bool
-    static_ancestors: tuple[str, ...]     # never-moving links above the subtree (no collision with them)
-
-
-def _split_scene(path: Path) -> list[_SceneBody]:
-    """The scene URDF at ``path`` cut into PyBullet bodies, in the closed state.
-
-    Every link that no prismatic/revolute joint moves becomes its own fixed single-link body (static:
-    Bullet never tests two static bodies against each other and never integrates them; its meshes are
-    concave triangle meshes, not convex hulls -- a hollow carcass stays hollow); every
-    prismatic/revolute joint whose parent never moves becomes a fixed-base body holding that joint and
-    the whole subtree below it, rooted at an empty anchor link placed at the parent's world pose. One
-    ~45-link multibody would cost a Featherstone pass and a broad-phase update over all its links every
-    step; this costs them only for the links that can move. Link and joint names are kept.
-    """
-    import xml.etree.ElementTree as ET
-    root = ET.parse(path).getroot()
-    links = {l.get("name"): l for l in root.findall("link")}
-    joints = root.findall("joint")
-    by_child = {j.find("child").get("link"): j for j in joints}
-    children: dict[str, list] = {}
-    for j in joints:
-        children.setdefault(j.find("parent").get("link"), []).append(j)
-    for mesh in root.iter("mesh"):                      # the copies live elsewhere: absolute mesh paths
-        fn = mesh.get("filename", "")
-        if fn and "://" not in fn and not os.path.isabs(fn):
-            mesh.set("filename", str((path.parent / fn).resolve()))
-    materials = "".join(ET.tostring(m, encoding="unicode") for m in root.findall("material"))
-
-    def moving(link: str) -> bool:
-        while link in by_child:
-            j = by_child[link]
-            if j.get("type") not in ("fixed", None):
-                return True
-            link = j.find("parent").get("link")
-        return False
-
-    T_world: dict[str, np.ndarray] = {}
-
-    def pose(link: str) -> np.ndarray:         # closed state: every joint at 0
-        if link not in T_world:
-            j = by_child.get(link)
-            T_world[link] = np.eye(4) if j is None else pose(j.find("parent").get("link")) @ _origin_T(j)
-        return T_world[link]
-
-    def ancestors(link: str) -> tuple[str, ...]:
-        out = [link]
-        while link in by_child:
-            link = by_child[link].find("parent").get("link")
-            out.append(link)
-        return tuple(out)
-
-    bodies = []
-    for name, elem in links.items():
-        if not moving(name):
-            for col in elem.findall("collision"):      # a static mesh collides as its triangles (a carcass
-                if col.find("geometry/mesh") is not None:  # is hollow), as coal sees it when planning
-                    col.set("concave", "yes")
-            bodies.append(_SceneBody(f"<robot name='{name}'>{materials}{ET.tostring(elem, encoding='unicode')}</robot>",
-                                     pose(name), False, ()))
-    for j in joints:
-        parent = j.find("parent").get("link")
-        if j.get("type") in ("fixed", None) or moving(parent):
-            continue
-        parts = [f"<link name='{_ANCHOR}'><inertial><mass value='1'/><inertia ixx='1' iyy='1' izz='1' ixy='0' ixz='0' "
-                 "iyz='0'/></inertial></link>"]          # fixed base: its mass never matters
-        top = ET.fromstring(ET.tostring(j, encoding="unicode"))
-        top.find("parent").set("link", _ANCHOR)
-        stack, sub = [top], []
-        while stack:
-            cur = stack.pop()
-            sub.append(cur)
-            stack.extend(reversed(children.get(cur.find("child").get("link"), [])))
-        for cur in sub:
-            parts.append(ET.tostring(links[cur.find("child").get("link")], encoding="unicode"))
-            parts.append(ET.tostring(cur, encoding="unicode"))
-        bodies.append(_SceneBody(f"<robot name='{j.get('name')}'>{materials}{''.join(parts)}</robot>", pose(parent),
-                                 True, ancestors(parent)))
-    return bodies
-
-
 class World:
     """A PyBullet client holding a floor, one scene and one robot.
 
@@ -318,7 +220,7 @@ class World:
         return pb.createMultiBody(0, shape, physicsClientId=self.client)
 
     def _load_scene(self) -> None:
-        """Load the scene as separate bodies (see :func:`_split_scene`), keeping every name.
+        """Load the scene as separate bodies (:func:`simcheck.scene_bodies.scene_bodies`), keeping every name.
 
         The URDF is first loaded whole once, to let PyBullet validate it and to read its joint table
         exactly as PyBullet parses it; then it is removed and loaded split."""
@@ -334,8 +236,8 @@ class World:
         joints, links = self._index(whole)
         pb.removeBody(whole, physicsClientId=c)
         try:
-            parts = _split_scene(self.scene_urdf)
-        except Exception as exc:
+            parts = scene_bodies(read_urdf(self.scene_urdf))
+        except DescriptionError as exc:
             raise SceneLoadError(f"cannot split scene URDF {self.scene_urdf} into bodies: {exc}") from exc
         self._link_at: dict[str, tuple[int, int]] = {}      # scene link name -> (body, link index)
         self._scene_names: dict[tuple[int, int], str] = {}  # (body, link index) -> scene link name
@@ -356,7 +258,7 @@ class World:
                                          f"{_pybullet_said(said)}") from exc
                 bj, bl = self._index(body)
                 for name, index in bl.items():
-                    if name != _ANCHOR:
+                    if name != ANCHOR:
                         self._link_at[name] = (body, index)
                         self._scene_names[(body, index)] = name
                 for info in bj.values():

@@ -25,6 +25,6 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
                "ROTATION_ATOL"],
     "_shape": ["ShapeKind", "Material", "Shape", "mass_properties"],
     "_model": ["JointType", "Limit", "Dynamics", "Inertial", "Link", "Joint", "SceneModel", "joint_motion"],
-    "_urdf": ["read_urdf", "urdf_text", "urdf_xml", "write_urdf"],
+    "_urdf": ["read_urdf", "urdf_text", "urdf_xml", "xml_text", "write_urdf"],
     "_truth": ["TRUTH_FORMAT", "check_truth_format", "read_truth_doc", "write_truth_doc"],
 })

@@ -66,17 +66,20 @@ class Inertial:
 
 @dataclass(frozen=True, eq=False)
 class Link:
-    """A link: optional ``inertial``, its ``visuals`` and ``collisions`` (shapes in the link frame)."""
+    """A link: optional ``inertial``, its ``visuals`` and ``collisions`` (shapes in the link frame), and
+    ``lateral_friction``: PyBullet's ``<contact><lateral_friction value>`` sliding friction coefficient of
+    its surfaces (``None``: the engine's default)."""
 
     name: str
     inertial: Inertial | None = None
     visuals: tuple[Shape, ...] = ()
     collisions: tuple[Shape, ...] = ()
+    lateral_friction: float | None = None
 
     def isclose(self, other: "Link", atol: float = 1e-9) -> bool:
         same_inertial = (self.inertial is None) == (other.inertial is None) and (
             self.inertial is None or self.inertial.isclose(other.inertial, atol))
-        return (self.name == other.name and same_inertial
+        return (self.name == other.name and same_inertial and self.lateral_friction == other.lateral_friction
                 and len(self.visuals) == len(other.visuals) and len(self.collisions) == len(other.collisions)
                 and all(a.isclose(b, atol) and a.material == b.material for a, b in zip(self.visuals, other.visuals))
                 and all(a.isclose(b, atol) for a, b in zip(self.collisions, other.collisions)))

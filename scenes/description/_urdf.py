@@ -21,7 +21,7 @@ from ._errors import DescriptionError
 from ._model import Dynamics, Inertial, Joint, JointType, Limit, Link, SceneModel
 from ._shape import Material, Shape, ShapeKind
 
-__all__ = ["read_urdf", "urdf_text", "urdf_xml", "write_urdf"]
+__all__ = ["read_urdf", "urdf_text", "urdf_xml", "xml_text", "write_urdf"]
 
 _TYPES = tuple(t.value for t in JointType)
 
@@ -54,7 +54,8 @@ def _mesh_path(filename: str, base: Path, where: str) -> str:
     return str(p.resolve())
 
 
-def _shape(g, base: Path, where: str, material=None, name=None, origin=None) -> Shape:
+def _shape(g, base: Path, at: str, what: str, material=None, name=None, origin=None) -> Shape:
+    where = f"{at} {what}"
     T = _pose(origin, f"{where} origin")
     if g.box is not None:
         size = _finite(g.box.size, f"{where} box size")
@@ -72,7 +73,7 @@ def _shape(g, base: Path, where: str, material=None, name=None, origin=None) -> 
             raise DescriptionError(f"{where} sphere has a non-positive radius")
         return Shape.sphere(r, T, name=name, material=material)
     scale = np.ones(3) if g.mesh.scale is None else _finite(np.broadcast_to(g.mesh.scale, (3,)), f"{where} mesh scale")
-    return Shape(ShapeKind.MESH, scale, T, name, _mesh_path(g.mesh.filename or "", base, where), material)
+    return Shape(ShapeKind.MESH, scale, T, name, _mesh_path(g.mesh.filename or "", base, at), material)
 
 
 def _material(m) -> Material | None:
@@ -103,11 +104,13 @@ def _link(el, base: Path, where: str) -> Link:
         inertia = np.zeros((3, 3)) if y.inertial.inertia is None else \
             _finite(y.inertial.inertia, f"{at} inertia").reshape(3, 3)
         inertial = Inertial(mass, _pose(y.inertial.origin, f"{at} inertial origin"), inertia)
-    visuals = tuple(_shape(v.geometry, base, f"{at} visual #{k}", _material(v.material), v.name, v.origin)
+    visuals = tuple(_shape(v.geometry, base, at, f"visual #{k}", _material(v.material), v.name, v.origin)
                     for k, v in enumerate(y.visuals))
-    collisions = tuple(_shape(c.geometry, base, f"{at} collision #{k}", None, c.name, c.origin)
+    collisions = tuple(_shape(c.geometry, base, at, f"collision #{k}", None, c.name, c.origin)
                        for k, c in enumerate(y.collisions))
-    return Link(name, inertial, visuals, collisions)
+    friction = el.find("contact/lateral_friction")
+    lateral = None if friction is None else float(_finite([friction.get("value", "nan")], f"{at} lateral_friction")[0])
+    return Link(name, inertial, visuals, collisions, lateral)
 
 
 def _joint(el, where: str) -> Joint:
@@ -223,14 +226,24 @@ def urdf_xml(model: SceneModel):
                            joints=[_y_joint(j) for j in model.joints.values()],
                            materials=[_y_material(m) for m in model.materials])
     urdf = yourdfpy.URDF(robot=robot, build_scene_graph=False, load_meshes=False, filename_handler=lambda f: f)
-    return urdf.write_xml().getroot()
-
-
-def urdf_text(model: SceneModel, element=None) -> str:
-    """The URDF text of ``model`` (or of an ``element`` made by :func:`urdf_xml` and edited), pretty-printed."""
+    root = urdf.write_xml().getroot()
     from lxml import etree
-    el = urdf_xml(model) if element is None else element
-    return etree.tostring(el, xml_declaration=True, encoding="UTF-8", pretty_print=True).decode()
+    for el in root.findall("link"):                   # PyBullet's <contact> extension (yourdfpy has none)
+        friction = model.links[el.get("name")].lateral_friction
+        if friction is not None:
+            etree.SubElement(etree.SubElement(el, "contact"), "lateral_friction", value=repr(float(friction)))
+    return root
+
+
+def urdf_text(model: SceneModel) -> str:
+    """The URDF text of ``model``, pretty-printed."""
+    return xml_text(urdf_xml(model))
+
+
+def xml_text(element) -> str:
+    """Pretty-printed text (with the XML declaration) of an lxml ``element``, e.g. one of :func:`urdf_xml`."""
+    from lxml import etree
+    return etree.tostring(element, xml_declaration=True, encoding="UTF-8", pretty_print=True).decode()
 
 
 def write_urdf(model: SceneModel, path: str | Path) -> Path:

@@ -48,8 +48,7 @@ def key_frame_indices(rollout: Rollout) -> list[tuple[str, int]]:
 def _segment_hits_box(a: np.ndarray, b: np.ndarray, solid: Solid) -> bool:
     """True when the segment a -> b (world, metres) crosses the solid's oriented bounding box (slab test)."""
     T = solid.T_world_shape
-    half = (np.array([2 * solid.size[0], 2 * solid.size[1], solid.size[2]]) if solid.kind != "box"
-            else solid.size) / 2
+    half = solid.size / 2
     pa, pb = (T[:3, :3].T @ (a - T[:3, 3])), (T[:3, :3].T @ (b - T[:3, 3]))
     d = pb - pa
     t0, t1 = 0.0, 1.0

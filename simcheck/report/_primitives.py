@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from scenes.description import parse_link_name
+from scenes.description import DescriptionError, parse_link_name, read_urdf
 
 from ._errors import ArtifactError
 
@@ -25,8 +25,8 @@ class Solid:
     """One primitive of one part.
 
     kind : "box" | "cylinder" | "sphere"
-    size : (3,) float, metres -- box edge lengths; cylinder (radius, radius, length) along local z;
-        sphere (radius, radius, radius).
+    size : (3,) float, metres -- box edge lengths; cylinder (2r, 2r, length) along local z;
+        sphere (2r, 2r, 2r) (the convention of :class:`scenes.description.Shape`).
     T_world_shape : (4, 4) float64 pose of the primitive's centre.
     link : URDF link name of the part; label : its semantic label ("drawer", ...; "" if unknown).
     """
@@ -56,12 +56,12 @@ def _size_of_shape(shape: dict, where: str) -> tuple[str, np.ndarray]:
         r, length = float(shape.get("radius", 0)), float(shape.get("length", 0))
         if r <= 0 or length <= 0:
             raise ArtifactError(f"{where}: cylinder needs positive radius and length, got {shape}")
-        return kind, np.array([r, r, length])
+        return kind, np.array([2 * r, 2 * r, length])
     if kind == "sphere":
         r = float(shape.get("radius", 0))
         if r <= 0:
             raise ArtifactError(f"{where}: sphere needs a positive radius, got {shape}")
-        return kind, np.array([r, r, r])
+        return kind, np.array([2 * r, 2 * r, 2 * r])
     raise ArtifactError(f"{where}: unknown shape type {kind!r} (expected box, cylinder or sphere)")
 
 
@@ -83,18 +83,15 @@ def solids_from_truth(truth: dict, source: str = "truth.json") -> list[Solid]:
 def solids_from_urdf(path: str | Path) -> list[Solid]:
     """Visual primitives of every link of a scene URDF at joint values 0 (the scanned state).
 
-    Read by :func:`planners.scene_urdf.read_scene_urdf`, the project's one URDF reader; meshes are skipped
+    Read by :func:`scenes.description.read_urdf`, the project's one URDF reader; meshes are skipped
     (a scene URDF has none).
 
     Raises:
         ArtifactError: the file is missing or malformed (names the file and the link or joint).
     """
-    from planners.errors import SceneURDFError
-    from planners.scene_urdf import read_scene_urdf
-
     try:
-        scene = read_scene_urdf(path)
-    except SceneURDFError as exc:
+        scene = read_urdf(path)
+    except DescriptionError as exc:
         raise ArtifactError(str(exc)) from exc
     solids: list[Solid] = []
     for name, link in scene.links.items():
@@ -103,7 +100,7 @@ def solids_from_urdf(path: str | Path) -> list[Solid]:
         T_world_link = scene.T_world_link(name)
         for g in link.visuals:
             if g.kind in ("box", "cylinder", "sphere"):
-                solids.append(Solid(g.kind, np.asarray(g.size, dtype=float), T_world_link @ g.T_link_geom, name, label))
+                solids.append(Solid(g.kind, g.size.copy(), T_world_link @ g.T_link_shape, name, label))
     return solids
 
 
@@ -112,8 +109,8 @@ def mesh_from_solid(solid: Solid, sections: int = 16) -> trimesh.Trimesh:
     if solid.kind == "box":
         mesh = trimesh.creation.box(extents=solid.size)
     elif solid.kind == "cylinder":
-        mesh = trimesh.creation.cylinder(radius=solid.size[0], height=solid.size[2], sections=sections)
+        mesh = trimesh.creation.cylinder(radius=solid.size[0] / 2, height=solid.size[2], sections=sections)
     else:
-        mesh = trimesh.creation.icosphere(subdivisions=1, radius=solid.size[0])
+        mesh = trimesh.creation.icosphere(subdivisions=1, radius=solid.size[0] / 2)
     mesh.apply_transform(solid.T_world_shape)
     return mesh

@@ -57,9 +57,9 @@ def _fingertip_reach(robot) -> float:
     reach = -np.inf
     for link in ("panda_leftfinger", "panda_rightfinger"):
         T = np.linalg.solve(T_tool, s.T_world_link(link, {}))
-        for g in s.links[link].geometries:
+        for g in s.links[link].collisions:
             v = trimesh.load(g.mesh, force="mesh").vertices * np.asarray(g.size)
-            reach = max(reach, float(((T @ g.T_link_geom)[:3, :3] @ v.T + (T @ g.T_link_geom)[:3, 3:]).T[:, 2].max()))
+            reach = max(reach, float(((T @ g.T_link_shape)[:3, :3] @ v.T + (T @ g.T_link_shape)[:3, 3:]).T[:, 2].max()))
     return reach
 
 

@@ -38,7 +38,7 @@ def test_malformed_urdf_is_rejected_naming_file_and_link(tmp_path):
     bad = tmp_path / "bad.urdf"
     bad.write_text('<robot name="r"><link name="a"><visual><geometry><box size="0.1 -1 0.1"/></geometry>'
                    "</visual></link></robot>")
-    with pytest.raises(ArtifactError, match=r"bad\.urdf \(visual\): link 'a' box has a non-positive size"):
+    with pytest.raises(ArtifactError, match=r"bad\.urdf: link 'a' visual #0 box has a non-positive size"):
         solids_from_urdf(bad)
     (tmp_path / "x.urdf").write_text("<robot><link")
     with pytest.raises(ArtifactError, match=r"x\.urdf: not valid XML"):

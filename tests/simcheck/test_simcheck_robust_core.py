@@ -122,8 +122,8 @@ def test_perturbed_urdf_has_the_sampled_joint_and_keeps_the_door_where_it_was(sc
     assert np.allclose(sj.axis_world, p.axis, atol=1e-6) and np.allclose(sj.origin_world, p.origin, atol=1e-6)
     assert sj.upper == pytest.approx(p.upper)
     door = before.joints[DOOR].child
-    for g0, g1 in zip(before.links[door].geometries, after.links[door].geometries):
-        assert np.allclose(before.T_world_link(door) @ g0.T_link_geom, after.T_world_link(door) @ g1.T_link_geom,
+    for g0, g1 in zip(before.links[door].collisions, after.links[door].collisions):
+        assert np.allclose(before.T_world_link(door) @ g0.T_link_shape, after.T_world_link(door) @ g1.T_link_shape,
                            atol=1e-6)
     handle = "cabinet1_handle5"
     moved = after.T_world_link(handle)[:3, 3] - before.T_world_link(handle)[:3, 3]
