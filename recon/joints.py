@@ -20,13 +20,13 @@ from __future__ import annotations
 import logging
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from recon.config import ReconConfig
 from recon.model import JointEstimate, JointType
 from recon.part_tree import PartTree
 from recon.primitive import Primitive
 from recon.templates import template_for
+from scenes.description import T_about
 
 __all__ = ["estimate_joints", "movable_joint", "opening_face", "hinge", "sweep_limit"]
 
@@ -139,13 +139,6 @@ def sweep_limit(moving: list[Primitive], motion, values: np.ndarray, obstacles: 
     return float(values[-1])
 
 
-def _rotation_about(axis: np.ndarray, origin: np.ndarray, angle: float) -> np.ndarray:
-    M = np.eye(4)
-    R = Rotation.from_rotvec(axis * angle).as_matrix()
-    M[:3, :3], M[:3, 3] = R, origin - R @ origin
-    return M
-
-
 def _translation(axis: np.ndarray, s: float) -> np.ndarray:
     M = np.eye(4)
     M[:3, 3] = axis * s
@@ -185,7 +178,7 @@ def movable_joint(jtype: JointType, parent: Primitive, child: Primitive, handles
     angles = np.append(np.arange(config.swing_step, config.door_max_angle, config.swing_step),
                        config.door_max_angle)
     radius = max(float(np.max(np.linalg.norm(m.corners() - origin, axis=1))) for m in moving)
-    upper = sweep_limit(moving, lambda a: _rotation_about(axis, origin, a), angles, obstacles, config,
+    upper = sweep_limit(moving, lambda a: T_about(axis, origin, a), angles, obstacles, config,
                         reach=radius)
     return axis, origin, upper
 

@@ -13,23 +13,15 @@ Frames: ``T_a_b`` is the (4, 4) pose of b in a; everything here is in the world 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from enum import Enum
 
 import numpy as np
 
 from recon.config import ReconConfig
 from recon.primitive import Primitive, SurfacePlane
+from scenes.description import JointType
 
 __all__ = ["JointType", "PartFit", "ContactEdge", "JointUncertainty", "JointEstimate", "ObjectReconstruction",
            "SceneGraph", "Reconstruction"]
-
-
-class JointType(str, Enum):
-    """URDF joint types used by the part tree."""
-
-    FIXED = "fixed"
-    PRISMATIC = "prismatic"
-    REVOLUTE = "revolute"
 
 
 @dataclass(frozen=True, eq=False)

@@ -11,19 +11,16 @@ A primitive's frame is centred on the shape. ``size`` is always a (3,) float64 e
 from __future__ import annotations
 
 from dataclasses import dataclass
-from enum import Enum
 
 import numpy as np
+
+from scenes.description import ShapeKind, shape_inertia, shape_volume
 
 __all__ = ["PrimitiveKind", "Primitive", "SurfacePlane", "volume_weighted_centre"]
 
 
-class PrimitiveKind(str, Enum):
-    """The primitive templates of Eq. 3 (values are the URDF geometry tag names)."""
-
-    BOX = "box"
-    CYLINDER = "cylinder"
-    SPHERE = "sphere"
+PrimitiveKind = ShapeKind
+"""The primitive templates of Eq. 3 are :class:`scenes.description.ShapeKind` box, cylinder and sphere."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,27 +96,12 @@ class Primitive:
     @property
     def volume(self) -> float:
         """Volume in m^3."""
-        sx, sy, sz = self.size
-        if self.kind is PrimitiveKind.BOX:
-            return float(sx * sy * sz)
-        if self.kind is PrimitiveKind.CYLINDER:
-            return float(np.pi * self.radius**2 * sz)
-        return float(4.0 / 3.0 * np.pi * (sx / 2.0) ** 3)
+        return shape_volume(self.kind, self.size)
 
     def inertia(self, mass: float) -> np.ndarray:
         """(3, 3) inertia tensor (kg m^2) about the centre, in the part frame (closed forms)."""
-        sx, sy, sz = self.size
-        if self.kind is PrimitiveKind.BOX:
-            d = mass / 12.0 * np.array([sy**2 + sz**2, sx**2 + sz**2, sx**2 + sy**2])
-        elif self.kind is PrimitiveKind.CYLINDER:
-            r = self.radius
-            side = mass * (3 * r**2 + sz**2) / 12.0
-            d = np.array([side, side, mass * r**2 / 2.0])
-        else:
-            d = np.full(3, 2.0 / 5.0 * mass * (sx / 2.0) ** 2)
-        return np.diag(d)
+        return shape_inertia(self.kind, self.size, mass)
 
-    # ----- derived primitives -----
     def transformed(self, T_new_world: np.ndarray) -> "Primitive":
         """The same shape moved rigidly by ``T_new_world`` (4, 4)."""
         return Primitive(self.kind, self.size, _check_pose(T_new_world, "T") @ self.T_world_part)

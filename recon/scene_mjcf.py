@@ -1,6 +1,7 @@
 """``scene.xml``: the scene as MJCF, for MuJoCo to load natively (``recon build --mjcf``).
 
-Written from the same description as scene.urdf (:func:`recon.scene_urdf.urdf_robot`), so bodies,
+Written from the same description as scene.urdf (:func:`recon.scene_urdf.scene_model`, a
+:class:`scenes.description.SceneModel`), so bodies,
 joints, inertials and shapes are the URDF's, name for name:
 
     link            -> ``<body name=link>`` nested under its parent link's body (``world`` = worldbody),
@@ -23,10 +24,9 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 
 import numpy as np
-import yourdfpy
 from scipy.spatial.transform import Rotation
 
-from scenes.description import WORLD_LINK
+from scenes.description import WORLD_LINK, Inertial, Joint, Link, SceneModel, Shape, ShapeKind
 
 __all__ = ["mjcf_string", "reconstruction_mjcf", "JOINT_ARMATURE"]
 
@@ -68,30 +68,30 @@ def _pose(el: ET.Element, T: np.ndarray | None) -> None:
         el.set("quat", _vec(q))
 
 
-def _geom(body: ET.Element, name: str | None, T, geometry: yourdfpy.Geometry, **attrib) -> None:
+def _geom(body: ET.Element, shape: Shape, **attrib) -> None:
     g = ET.SubElement(body, "geom")
-    if name:
-        g.set("name", name)
-    if geometry.box is not None:
+    if shape.name:
+        g.set("name", shape.name)
+    if shape.kind is ShapeKind.BOX:
         g.set("type", "box")
-        g.set("size", _vec(np.asarray(geometry.box.size, float) / 2.0))
-    elif geometry.cylinder is not None:
+        g.set("size", _vec(shape.size / 2.0))
+    elif shape.kind is ShapeKind.CYLINDER:
         g.set("type", "cylinder")
-        g.set("size", f"{_len(geometry.cylinder.radius)} {_len(geometry.cylinder.length / 2.0)}")
-    elif geometry.sphere is not None:
+        g.set("size", f"{_len(shape.radius)} {_len(shape.length / 2.0)}")
+    elif shape.kind is ShapeKind.SPHERE:
         g.set("type", "sphere")
-        g.set("size", _len(geometry.sphere.radius))
+        g.set("size", _len(shape.radius))
     else:
-        raise ValueError(f"geom {name!r}: only box, cylinder and sphere geometry can be written to MJCF")
-    _pose(g, T)
+        raise ValueError(f"geom {shape.name!r}: only box, cylinder and sphere geometry can be written to MJCF")
+    _pose(g, shape.T_link_shape)
     for k, v in attrib.items():
         g.set(k, v)
 
 
-def _inertial(body: ET.Element, inertial: yourdfpy.Inertial) -> None:
+def _inertial(body: ET.Element, inertial: Inertial) -> None:
     """``<inertial pos mass fullinertia>``: MJCF takes a full inertia only in the body's axes, so the
     URDF's tensor (in its inertial frame) is turned: I_body = R I R^T."""
-    T = np.eye(4) if inertial.origin is None else np.asarray(inertial.origin, float)
+    T = np.asarray(inertial.T_link_com, float)
     el = ET.SubElement(body, "inertial", pos=_vec(T[:3, 3]))
     el.set("mass", _sig(inertial.mass))
     I = T[:3, :3] @ np.asarray(inertial.inertia, float) @ T[:3, :3].T
@@ -99,47 +99,46 @@ def _inertial(body: ET.Element, inertial: yourdfpy.Inertial) -> None:
     el.set("fullinertia", " ".join(_sig(I[i, k], scale) for i, k in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))))
 
 
-def _body(parent: ET.Element, link: yourdfpy.Link, joint: yourdfpy.Joint) -> ET.Element:
+def _body(parent: ET.Element, link: Link, joint: Joint) -> ET.Element:
     body = ET.SubElement(parent, "body", name=link.name)
-    _pose(body, joint.origin)
+    _pose(body, joint.T_parent_joint)
     if joint.type in ("revolute", "prismatic"):
         j = ET.SubElement(body, "joint", name=joint.name, type="hinge" if joint.type == "revolute" else "slide")
         j.set("axis", _vec(joint.axis))
-        if joint.limit is not None and joint.limit.lower is not None and joint.limit.upper is not None:
+        if joint.limit is not None:
             j.set("range", f"{_len(joint.limit.lower)} {_len(joint.limit.upper)}")
         dyn = joint.dynamics
-        j.set("damping", _sig(dyn.damping if dyn is not None and dyn.damping is not None else 0.0))
-        j.set("frictionloss", _sig(dyn.friction if dyn is not None and dyn.friction is not None else 0.0))
+        j.set("damping", _sig(dyn.damping if dyn is not None else 0.0))
+        j.set("frictionloss", _sig(dyn.friction if dyn is not None else 0.0))
         j.set("armature", _sig(JOINT_ARMATURE))
     elif joint.type != "fixed":
-        raise ValueError(f"joint {joint.name!r}: type {joint.type!r} cannot be written to MJCF "
+        raise ValueError(f"joint {joint.name!r}: type {joint.type.value!r} cannot be written to MJCF "
                          "(only fixed, revolute and prismatic)")
     if link.inertial is not None and link.inertial.mass:
         _inertial(body, link.inertial)
     for v in link.visuals:
         material = v.material.name if v.material is not None and v.material.name else None
-        _geom(body, v.name, v.origin, v.geometry, group="1", contype="0", conaffinity="0",
-              **({"material": material} if material else {}))
+        _geom(body, v, group="1", contype="0", conaffinity="0", **({"material": material} if material else {}))
     for c in link.collisions:
-        _geom(body, c.name, c.origin, c.geometry, group="3")
+        _geom(body, c, group="3")
     return body
 
 
-def mjcf_string(robot: yourdfpy.Robot, exclude: tuple[tuple[str, str], ...] = ()) -> str:
-    """The MJCF text of a URDF description ``robot`` (root link ``world``, primitive shapes only)."""
-    links = {link.name: link for link in robot.links}
-    children: dict[str, list[yourdfpy.Joint]] = {}
-    for j in robot.joints:
+def mjcf_string(model: SceneModel, exclude: tuple[tuple[str, str], ...] = ()) -> str:
+    """The MJCF text of a scene ``model`` (root link ``world``, primitive shapes only)."""
+    links = model.links
+    children: dict[str, list[Joint]] = {}
+    for j in model.joints.values():
         children.setdefault(j.parent, []).append(j)
-    root = ET.Element("mujoco", model=robot.name)
+    root = ET.Element("mujoco", model=model.name)
     ET.SubElement(root, "compiler", angle="radian", autolimits="true", inertiafromgeom="false")
     asset = ET.SubElement(root, "asset")
     materials = {}
-    for link in robot.links:
+    for link in links.values():
         for v in link.visuals:
             m = v.material
-            if m is not None and m.name and m.color is not None and m.name not in materials:
-                materials[m.name] = m.color.rgba
+            if m is not None and m.name and m.rgba is not None and m.name not in materials:
+                materials[m.name] = m.rgba
     for name, rgba in materials.items():
         ET.SubElement(asset, "material", name=name, rgba=" ".join(f"{float(x):.6g}" for x in rgba))
     world = ET.SubElement(root, "worldbody")
@@ -161,8 +160,8 @@ def reconstruction_mjcf(rec) -> str:
     description, excluding the contacts of link pairs that still overlap by more than
     ``ClearanceConfig.report_overlap`` (none after recon.clearance, unless it warned)."""
     from recon.clearance import links_in_contact
-    from recon.scene_urdf import urdf_robot
+    from recon.scene_urdf import scene_model
 
     limit = rec.config.clearance.report_overlap
     exclude = tuple((a, b) for a, b, s in links_in_contact(rec.objects, rec.walls, 0.0) if s < -limit)
-    return mjcf_string(urdf_robot(rec), exclude)
+    return mjcf_string(scene_model(rec), exclude)

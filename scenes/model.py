@@ -6,90 +6,20 @@ All are frozen dataclasses; arrays are float64. Frames (see ``docs/contracts.md`
   outward front normal, z up;
 * part frame ``T_object_part``: pose of a part in its object frame at joint value 0 (closed); for a
   movable part the frame origin lies on the joint axis (on the hinge line for a door);
-* shape frame ``T_part_shape``: a box is centred on its frame, a cylinder is centred with its axis
-  along local z.
+* shape frame ``Shape.T_link_shape`` (:class:`scenes.description.Shape`; the link is the part): a box is
+  centred on its frame, a cylinder is centred with its axis along local z.
 """
 
 from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass, field
-from enum import Enum
 
 import numpy as np
 
-from .description import joint_name, link_name, object_name
+from .description import JointType, Shape, T_about, joint_name, link_name, object_name
 
-__all__ = ["ShapeType", "JointType", "Shape", "Part", "Joint", "ArticulatedObject", "Wall", "Scene"]
-
-
-class ShapeType(str, Enum):
-    BOX = "box"
-    CYLINDER = "cylinder"
-
-
-class JointType(str, Enum):
-    FIXED = "fixed"
-    PRISMATIC = "prismatic"
-    REVOLUTE = "revolute"
-
-
-def _arr(x, shape) -> np.ndarray:
-    a = np.array(x, dtype=np.float64)
-    if a.shape != shape:
-        raise ValueError(f"expected shape {shape}, got {a.shape}")
-    return a
-
-
-@dataclass(frozen=True, eq=False)
-class Shape:
-    """A primitive solid of a part.
-
-    ``size``: box (3,) full extents in metres; cylinder (3,) = (2r, 2r, length).
-    ``T_part_shape``: (4, 4) pose of the shape in the part frame.
-    """
-
-    type: ShapeType
-    size: np.ndarray
-    T_part_shape: np.ndarray
-
-    @staticmethod
-    def box(size, T_part_shape) -> "Shape":
-        return Shape(ShapeType.BOX, _arr(size, (3,)), _arr(T_part_shape, (4, 4)))
-
-    @staticmethod
-    def cylinder(radius: float, length: float, T_part_shape) -> "Shape":
-        return Shape(ShapeType.CYLINDER, np.array([2 * radius, 2 * radius, length], float),
-                     _arr(T_part_shape, (4, 4)))
-
-    @property
-    def radius(self) -> float:
-        return float(self.size[0] / 2)
-
-    @property
-    def length(self) -> float:
-        return float(self.size[2])
-
-    @property
-    def volume(self) -> float:
-        """m^3."""
-        if self.type is ShapeType.BOX:
-            return float(np.prod(self.size))
-        return float(np.pi * self.radius ** 2 * self.length)
-
-    def corners(self) -> np.ndarray:
-        """(8, 3) corners of the shape's bounding box, in the part frame (a cylinder's box is tight)."""
-        h = self.size / 2
-        c = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], float) * h
-        return c @ self.T_part_shape[:3, :3].T + self.T_part_shape[:3, 3]
-
-    def moved(self, T_new_part: np.ndarray) -> "Shape":
-        """The same shape expressed in another frame: ``T_new_shape = T_new_part @ T_part_shape``."""
-        return Shape(self.type, self.size.copy(), T_new_part @ self.T_part_shape)
-
-    def isclose(self, other: "Shape", atol: float = 1e-9) -> bool:
-        return (self.type == other.type and np.allclose(self.size, other.size, atol=atol)
-                and np.allclose(self.T_part_shape, other.T_part_shape, atol=atol))
+__all__ = ["JointType", "Part", "Joint", "ArticulatedObject", "Wall", "Scene"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -246,11 +176,7 @@ def _joint_motion(j: Joint, value: float) -> np.ndarray:
     if j.type is JointType.PRISMATIC:
         M[:3, 3] = j.axis * value
     elif j.type is JointType.REVOLUTE:
-        a = j.axis / np.linalg.norm(j.axis)
-        K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-        R = np.eye(3) + np.sin(value) * K + (1 - np.cos(value)) * K @ K
-        M[:3, :3] = R
-        M[:3, 3] = j.origin - R @ j.origin
+        M = T_about(j.axis, j.origin, value)
     return M
 
 

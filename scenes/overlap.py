@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .model import ArticulatedObject, Shape, ShapeType
+from .description import Shape, ShapeKind
+from .model import ArticulatedObject
 from .scanner.meshes import FACET_TOLERANCE
 
 __all__ = ["OVERLAP_TOLERANCE", "shape_solid", "overlap_volume", "part_overlaps", "object_overlap"]
@@ -20,8 +21,8 @@ def shape_solid(shape: Shape, T_world_part: np.ndarray):
     """A ``manifold3d.Manifold`` of ``shape`` placed by ``T_world_part`` (4, 4)."""
     import manifold3d as m3d
 
-    T = T_world_part @ shape.T_part_shape
-    if shape.type is ShapeType.BOX:
+    T = T_world_part @ shape.T_link_shape
+    if shape.kind is ShapeKind.BOX:
         solid = m3d.Manifold.cube(tuple(shape.size), center=True)
     else:
         n = int(max(16, np.ceil(np.pi / np.arccos(1 - FACET_TOLERANCE / shape.radius))))

@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .model import Part, Shape, ShapeType
+from .description import Shape, ShapeKind
+from .model import Part
 from .description import transform_points
 
 __all__ = ["shape_sdf", "part_surface_distance"]
@@ -15,9 +16,9 @@ __all__ = ["shape_sdf", "part_surface_distance"]
 
 def shape_sdf(shape: Shape, p_part: np.ndarray) -> np.ndarray:
     """(n,) signed distance (m, negative inside) from (n, 3) points in the part frame to ``shape``."""
-    T_shape_part = np.linalg.inv(shape.T_part_shape)
+    T_shape_part = np.linalg.inv(shape.T_link_shape)
     p = transform_points(T_shape_part, p_part)
-    if shape.type is ShapeType.BOX:
+    if shape.kind is ShapeKind.BOX:
         q = np.abs(p) - shape.size / 2
     else:
         q = np.stack([np.linalg.norm(p[:, :2], axis=1) - shape.radius, np.abs(p[:, 2]) - shape.length / 2], 1)

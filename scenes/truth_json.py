@@ -10,7 +10,8 @@ from .description import TRUTH_FORMAT, DescriptionError, check_truth_format, rea
 from .config import DEFAULT_GENERATOR
 from .errors import SceneSpecError
 from .validate import validate_scene
-from .model import ArticulatedObject, Joint, JointType, Part, Scene, Shape, ShapeType, Wall
+from .description import Shape, ShapeKind
+from .model import ArticulatedObject, Joint, JointType, Part, Scene, Wall
 
 __all__ = ["TRUTH_FORMAT", "truth_dict_from_scene", "write_truth_json", "scene_from_truth_dict",
            "read_truth_json"]
@@ -26,9 +27,9 @@ def _v(v) -> list[float]:
 
 
 def _shape_dict(s: Shape) -> dict:
-    if s.type is ShapeType.BOX:
-        return {"type": "box", "size": _v(s.size), "T_part_shape": _m(s.T_part_shape)}
-    return {"type": "cylinder", "radius": s.radius, "length": s.length, "T_part_shape": _m(s.T_part_shape)}
+    if s.kind is ShapeKind.BOX:
+        return {"type": "box", "size": _v(s.size), "T_part_shape": _m(s.T_link_shape)}
+    return {"type": "cylinder", "radius": s.radius, "length": s.length, "T_part_shape": _m(s.T_link_shape)}
 
 
 def _object_dict(o: ArticulatedObject) -> dict:

@@ -89,7 +89,7 @@ def template_from_object(obj, name: str) -> Template:
     """A :class:`Template` from a ``scenes.model.ArticulatedObject`` (its object frame, closed state)."""
     parts = []
     for part in obj.parts:
-        prims = tuple(Primitive(s.type.value, s.size, part.T_object_part @ s.T_part_shape) for s in part.shapes)
+        prims = tuple(Primitive(s.kind.value, s.size, part.T_object_part @ s.T_link_shape) for s in part.shapes)
         parts.append(TemplatePart(int(part.id), str(part.label), prims))
     joints = []
     for j in obj.joints:

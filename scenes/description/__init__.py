@@ -23,8 +23,9 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "_poses": ["pose", "rot_x", "rot_y", "rot_z", "R_about", "T_about", "T_inverse", "T_translation",
                "T_from_xyz_rpy", "xyz_rpy_from_T", "transform_points", "check_pose", "check_rotation",
                "ROTATION_ATOL"],
-    "_shape": ["ShapeKind", "Material", "Shape", "mass_properties"],
+    "_shape": ["ShapeKind", "Material", "Shape", "shape_volume", "shape_inertia", "mass_properties"],
     "_model": ["JointType", "Limit", "Dynamics", "Inertial", "Link", "Joint", "SceneModel", "joint_motion"],
-    "_urdf": ["read_urdf", "urdf_text", "urdf_xml", "xml_text", "write_urdf"],
+    "_urdf": ["read_urdf", "urdf_text", "urdf_xml", "xml_text", "round_numbers", "write_urdf", "LENGTH_DECIMALS",
+              "SIGNIFICANT_DIGITS"],
     "_truth": ["TRUTH_FORMAT", "check_truth_format", "read_truth_doc", "write_truth_doc"],
 })

@@ -17,7 +17,7 @@ from enum import Enum
 
 import numpy as np
 
-__all__ = ["ShapeKind", "Material", "Shape", "mass_properties"]
+__all__ = ["ShapeKind", "Material", "Shape", "shape_volume", "shape_inertia", "mass_properties"]
 
 
 class ShapeKind(str, Enum):
@@ -27,6 +27,35 @@ class ShapeKind(str, Enum):
     CYLINDER = "cylinder"
     SPHERE = "sphere"
     MESH = "mesh"
+
+
+def shape_volume(kind: ShapeKind, size) -> float:
+    """m^3 of a solid ``kind`` of ``size`` (3,) (see the module docstring; 0 for a mesh)."""
+    sx, sy, sz = size
+    if kind is ShapeKind.BOX:
+        return float(sx * sy * sz)
+    if kind is ShapeKind.CYLINDER:
+        return float(np.pi * (min(sx, sy) / 2.0) ** 2 * sz)
+    if kind is ShapeKind.SPHERE:
+        return float(4.0 / 3.0 * np.pi * (sx / 2.0) ** 3)
+    return 0.0
+
+
+def shape_inertia(kind: ShapeKind, size, mass: float) -> np.ndarray:
+    """(3, 3) inertia (kg m^2) of a solid ``kind`` of ``size`` (3,) and ``mass`` kg about its centre, in its
+    own axes (closed forms; ``ValueError`` for a mesh)."""
+    sx, sy, sz = size
+    if kind is ShapeKind.BOX:
+        d = mass / 12.0 * np.array([sy ** 2 + sz ** 2, sx ** 2 + sz ** 2, sx ** 2 + sy ** 2])
+    elif kind is ShapeKind.CYLINDER:
+        r = min(sx, sy) / 2.0
+        side = mass * (3 * r ** 2 + sz ** 2) / 12.0
+        d = np.array([side, side, mass * r ** 2 / 2.0])
+    elif kind is ShapeKind.SPHERE:
+        d = np.full(3, 2.0 / 5.0 * mass * (sx / 2.0) ** 2)
+    else:
+        raise ValueError("a mesh has no closed-form inertia")
+    return np.diag(d)
 
 
 @dataclass(frozen=True)
@@ -104,29 +133,11 @@ class Shape:
     @property
     def volume(self) -> float:
         """m^3 of the solid (0 for a mesh)."""
-        sx, sy, sz = self.size
-        if self.kind is ShapeKind.BOX:
-            return float(sx * sy * sz)
-        if self.kind is ShapeKind.CYLINDER:
-            return float(np.pi * self.radius ** 2 * sz)
-        if self.kind is ShapeKind.SPHERE:
-            return float(4.0 / 3.0 * np.pi * (sx / 2.0) ** 3)
-        return 0.0
+        return shape_volume(self.kind, self.size)
 
     def inertia(self, mass: float) -> np.ndarray:
         """(3, 3) inertia (kg m^2) of a solid of ``mass`` kg about its centre, in the shape's axes."""
-        sx, sy, sz = self.size
-        if self.kind is ShapeKind.BOX:
-            d = mass / 12.0 * np.array([sy ** 2 + sz ** 2, sx ** 2 + sz ** 2, sx ** 2 + sy ** 2])
-        elif self.kind is ShapeKind.CYLINDER:
-            r = self.radius
-            side = mass * (3 * r ** 2 + sz ** 2) / 12.0
-            d = np.array([side, side, mass * r ** 2 / 2.0])
-        elif self.kind is ShapeKind.SPHERE:
-            d = np.full(3, 2.0 / 5.0 * mass * (sx / 2.0) ** 2)
-        else:
-            raise ValueError(f"shape {self.name or ''!r}: a mesh has no closed-form inertia")
-        return np.diag(d)
+        return shape_inertia(self.kind, self.size, mass)
 
     # ----- geometry
     def corners(self) -> np.ndarray:

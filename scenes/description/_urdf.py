@@ -21,7 +21,8 @@ from ._errors import DescriptionError
 from ._model import Dynamics, Inertial, Joint, JointType, Limit, Link, SceneModel
 from ._shape import Material, Shape, ShapeKind
 
-__all__ = ["read_urdf", "urdf_text", "urdf_xml", "xml_text", "write_urdf"]
+__all__ = ["read_urdf", "urdf_text", "urdf_xml", "xml_text", "round_numbers", "write_urdf", "LENGTH_DECIMALS",
+           "SIGNIFICANT_DIGITS"]
 
 _TYPES = tuple(t.value for t in JointType)
 
@@ -235,9 +236,12 @@ def urdf_xml(model: SceneModel):
     return root
 
 
-def urdf_text(model: SceneModel) -> str:
-    """The URDF text of ``model``, pretty-printed."""
-    return xml_text(urdf_xml(model))
+def urdf_text(model: SceneModel, rounded: bool = False) -> str:
+    """The URDF text of ``model``, pretty-printed; ``rounded``: numbers as :func:`round_numbers` writes them."""
+    root = urdf_xml(model)
+    if rounded:
+        round_numbers(root)
+    return xml_text(root)
 
 
 def xml_text(element) -> str:
@@ -246,6 +250,48 @@ def xml_text(element) -> str:
     return etree.tostring(element, xml_declaration=True, encoding="UTF-8", pretty_print=True).decode()
 
 
-def write_urdf(model: SceneModel, path: str | Path) -> Path:
-    """Write ``model`` to ``path`` atomically; returns the path."""
-    return write_text_atomic(path, urdf_text(model))
+LENGTH_DECIMALS = 6
+"""Rounded URDFs write lengths (m) and angles (rad) to 1e-6."""
+SIGNIFICANT_DIGITS = 9
+"""Rounded URDFs keep this many significant digits of masses and inertias."""
+_LENGTH_ATTRIBUTES = {("origin", "xyz"), ("origin", "rpy"), ("box", "size"), ("cylinder", "radius"),
+                      ("cylinder", "length"), ("sphere", "radius"), ("axis", "xyz"), ("limit", "lower"),
+                      ("limit", "upper")}
+_INERTIA_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+
+
+def _length(x: float) -> str:
+    text = f"{round(float(x), LENGTH_DECIMALS) + 0.0:.{LENGTH_DECIMALS}f}".rstrip("0").rstrip(".")
+    return "0" if text in ("", "-0") else text
+
+
+def _significant(x: float, scale: float | None = None) -> str:
+    """``x`` to SIGNIFICANT_DIGITS digits (of ``scale`` when given: terms far below it become 0)."""
+    x = float(x)
+    if scale is not None and scale > 0:
+        step = 10.0 ** (np.floor(np.log10(scale)) - (SIGNIFICANT_DIGITS - 1))
+        x = round(x / step) * step
+    return f"{x + 0.0:.{SIGNIFICANT_DIGITS}g}"
+
+
+def round_numbers(root) -> None:
+    """Rewrite the numbers of a URDF element tree in place so that the same model gives the same bytes:
+    lengths and angles (origins, sizes, axes, limits) to ``LENGTH_DECIMALS`` decimals, masses and inertias
+    to ``SIGNIFICANT_DIGITS`` significant digits (an inertia term relative to the largest term of its
+    tensor, so round-off terms near zero are written as 0)."""
+    for el in root.iter():
+        for key in list(el.attrib):
+            if (el.tag, key) in _LENGTH_ATTRIBUTES:
+                el.set(key, " ".join(_length(float(v)) for v in el.get(key).split()))
+            elif el.tag == "mass" and key == "value":
+                el.set(key, _significant(float(el.get(key))))
+        if el.tag == "inertia":
+            vals = [float(el.get(k, 0.0)) for k in _INERTIA_KEYS]
+            scale = max(abs(v) for v in vals)
+            for k, v in zip(_INERTIA_KEYS, vals):
+                el.set(k, _significant(v, scale))
+
+
+def write_urdf(model: SceneModel, path: str | Path, rounded: bool = False) -> Path:
+    """Write :func:`urdf_text` of ``model`` to ``path`` atomically; returns the path."""
+    return write_text_atomic(path, urdf_text(model, rounded))

@@ -9,7 +9,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..config import GeneratorConfig
-from ..model import ArticulatedObject, Joint, JointType, Part, Shape
+from ..description import Shape
+from ..model import ArticulatedObject, Joint, JointType, Part
 from ..description import pose
 
 __all__ = ["ObjectBuilder"]

@@ -11,7 +11,8 @@ from dataclasses import dataclass
 import numpy as np
 import trimesh
 
-from ..model import Scene, Shape, ShapeType
+from ..description import Shape, ShapeKind
+from ..model import Scene
 
 __all__ = ["FACET_TOLERANCE", "TaggedMesh", "scene_meshes", "shape_mesh"]
 
@@ -36,8 +37,8 @@ def _sections(radius: float) -> int:
 
 def shape_mesh(shape: Shape, T_world_part: np.ndarray) -> trimesh.Trimesh:
     """The world-frame mesh of ``shape`` on a part at ``T_world_part`` (4, 4)."""
-    T = T_world_part @ shape.T_part_shape
-    if shape.type is ShapeType.BOX:
+    T = T_world_part @ shape.T_link_shape
+    if shape.kind is ShapeKind.BOX:
         return trimesh.creation.box(extents=shape.size, transform=T)
     return trimesh.creation.cylinder(radius=shape.radius, height=shape.length,
                                      sections=_sections(shape.radius), transform=T)

@@ -43,8 +43,8 @@ def truth_dict(obj, T_world_object, object_id: int) -> dict:
     pid = lambda local: 100 * object_id + local
     parts = [{"id": pid(p.id), "label": p.label, "link": link_name(obj.category, object_id, p.label, pid(p.id)),
               "T_world_part": (T_world_object @ p.T_object_part).tolist(),
-              "shapes": [{"type": s.type.value, "size": s.size.tolist(), "radius": s.size[0] / 2,
-                          "length": s.size[2], "T_part_shape": s.T_part_shape.tolist()} for s in p.shapes]}
+              "shapes": [{"type": s.kind.value, "size": s.size.tolist(), "radius": s.size[0] / 2,
+                          "length": s.size[2], "T_part_shape": s.T_link_shape.tolist()} for s in p.shapes]}
              for p in obj.parts]
     R, t = T_world_object[:3, :3], T_world_object[:3, 3]
     joints = [{"name": joint_name(obj.category, object_id, obj.part(j.child).label, pid(j.child)),

@@ -9,8 +9,9 @@ import pytest
 
 from scenes.errors import SceneSpecError
 from scenes.generators import CABINET_LAYOUTS, FRIDGE_LAYOUTS, GENERATORS, make_cabinet, make_refrigerator
-from scenes.inertia import part_mass_properties
-from scenes.model import JointType, Shape
+from scenes.description import mass_properties
+from scenes.description import Shape
+from scenes.model import JointType
 from scenes.overlap import part_overlaps
 from scenes.description import pose
 from scenes.validate import validate_object
@@ -58,8 +59,8 @@ def test_cabinet_body_is_hollow_and_drawer_is_an_open_box():
     drawer = next(p for p in cab.parts if p.label == "drawer")
     assert len(drawer.shapes) == 5                  # bottom, 2 sides, back, front panel; no top
     lo, hi = cab.bounds()
-    box_tops = [s.T_part_shape[2, 3] + s.size[2] / 2 for s in drawer.shapes[:4]]
-    assert max(box_tops) <= drawer.shapes[4].T_part_shape[2, 3] + drawer.shapes[4].size[2] / 2 + 1e-9
+    box_tops = [s.T_link_shape[2, 3] + s.size[2] / 2 for s in drawer.shapes[:4]]
+    assert max(box_tops) <= drawer.shapes[4].T_link_shape[2, 3] + drawer.shapes[4].size[2] / 2 + 1e-9
     assert lo[2] == pytest.approx(0.0) and hi[2] > 0.7
 
 
@@ -73,7 +74,7 @@ def test_drawer_slides_out_and_door_swings_outwards():
         if j.type is JointType.PRISMATIC:
             assert T1[0, 3] - T0[0, 3] == pytest.approx(j.upper)
         else:
-            free_edge = [p.T_part_shape[:3, 3] for p in cab.part(j.child).shapes][0] * 2
+            free_edge = [p.T_link_shape[:3, 3] for p in cab.part(j.child).shapes][0] * 2
             x0 = (T0 @ np.append(free_edge, 1))[0]
             x1 = (T1 @ np.append(free_edge, 1))[0]
             assert x1 > x0 + 0.2                     # the free edge moved out in front (+x)
@@ -123,7 +124,7 @@ def test_inertia_of_a_single_box_matches_the_closed_form():
     cab = make_cabinet(np.random.default_rng(0))
     box = Shape.box([0.2, 0.4, 0.6], pose([0.1, 0.2, 0.3]))
     part = dataclasses.replace(cab.root, shapes=(box,), density=500.0)
-    m, com, inertia = part_mass_properties(part)
+    m, com, inertia = mass_properties(part.shapes, part.density)
     assert m == pytest.approx(0.048 * 500)
     assert np.allclose(com, [0.1, 0.2, 0.3])
     assert np.allclose(np.diag(inertia), m / 12 * np.array([0.16 + 0.36, 0.04 + 0.36, 0.04 + 0.16]))
