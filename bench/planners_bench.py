@@ -15,7 +15,6 @@ certification target.
 from __future__ import annotations
 
 import argparse
-import json
 import re
 import sys
 import tempfile
@@ -24,6 +23,8 @@ from collections import Counter, defaultdict
 from pathlib import Path
 
 import numpy as np
+
+from scenes.description import read_truth_doc
 
 
 def _scene_list(spec: str) -> list[tuple[str, int]]:
@@ -40,7 +41,7 @@ def _tasks(truth_json: Path, scene_urdf: Path) -> list[tuple[str, str, str]]:
     from the truth)."""
     from planners.scene_urdf import read_scene_urdf
 
-    truth = json.loads(truth_json.read_text())
+    truth = read_truth_doc(truth_json)
     category = {o["name"]: o["category"] for o in truth["objects"]}
     tasks = []
     for j in read_scene_urdf(scene_urdf).joints.values():

@@ -22,7 +22,6 @@ certified) and target lines that say YES or NO. Exit 0 when every target is met,
 from __future__ import annotations
 
 import argparse
-import json
 import logging
 import sys
 import tempfile
@@ -32,6 +31,8 @@ from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
+
+from scenes.description import read_truth_doc
 
 __all__ = ["main", "KINDS", "Run", "detection_threshold", "peak_grasp_force"]
 
@@ -128,7 +129,7 @@ def _criterion_value(task, name: str) -> float:
 def _tasks(truth_json: Path, drawers: int, doors: int) -> dict[str, list[str]]:
     """Task joints of a kitchen: the first ``drawers`` cabinet drawers; ``doors`` doors taken in turn from
     the refrigerator, the cabinet and the microwave."""
-    doc = json.loads(truth_json.read_text())
+    doc = read_truth_doc(truth_json)
     by_cat: dict[str, list[str]] = {}
     drawer_joints = []
     for o in doc["objects"]:

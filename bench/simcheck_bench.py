@@ -23,7 +23,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from scenes.description import FRONT_CATEGORIES
+from scenes.description import FRONT_CATEGORIES, read_truth_doc
 from scenes.outcome import Outcome
 
 __all__ = ["main"]
@@ -67,7 +67,7 @@ class WrongRow(NamedTuple):
 def _tasks_from_truth(truth_json: Path) -> list[tuple[str, str, str, str]]:
     """(task string, category, joint type, object name) for every drawer/door of cabinets, microwaves and
     refrigerators."""
-    doc = json.loads(truth_json.read_text())
+    doc = read_truth_doc(truth_json)
     out = []
     for o in doc["objects"]:
         if o["category"] not in CATEGORIES:

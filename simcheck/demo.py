@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from scenes.description import write_text_atomic
+from scenes.description import read_truth_doc, write_text_atomic
 from scenes.outcome import Outcome
 from simcheck.report import DemoLayout, render_report
 
@@ -162,7 +162,7 @@ def choose_tasks(truth: dict, graph: dict, max_drawers: int, max_doors: int) -> 
 def _stage_scene(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
     make_scene = _api("scenes", "make_scene")
     make_scene(cfg.scene, seed=cfg.seed, preset=cfg.preset, out=lay.truth_dir)
-    truth = json.loads(lay.truth_json.read_text())
+    truth = read_truth_doc(lay.truth_json)
     n_parts = sum(len(o.get("parts", [])) for o in truth.get("objects", []))
     return f"{cfg.scene} seed {cfg.seed}: {len(truth.get('objects', []))} objects, {n_parts} parts; " \
            f"scanned with preset {cfg.preset!r}"
@@ -254,7 +254,7 @@ def usable_tasks(choice: TaskChoice, scene_urdf: Path) -> TaskChoice:
 
 
 def _stage_tasks(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
-    truth = json.loads(lay.truth_json.read_text())
+    truth = read_truth_doc(lay.truth_json)
     graph = json.loads(lay.graph_json.read_text())
     choice = usable_tasks(choose_tasks(truth, graph, cfg.max_drawers, cfg.max_doors), lay.scene_urdf)
     state["tasks"] = choice

@@ -14,7 +14,7 @@ import time
 from collections.abc import Mapping
 from pathlib import Path
 
-from scenes.description import write_text_atomic
+from scenes.description import DescriptionError, read_truth_doc, write_text_atomic
 from scenes.outcome import Outcome
 
 from ._errors import ArtifactError
@@ -44,6 +44,16 @@ def read_json(path: Path) -> dict | None:
     if not isinstance(doc, dict):
         raise ArtifactError(f"{path}: expected a JSON object at the top level, got {type(doc).__name__}")
     return doc
+
+
+def _read_truth(path: Path) -> dict | None:
+    """The ``truth.json`` document in ``path`` (format checked); ``None`` when the file does not exist."""
+    if not path.exists():
+        return None
+    try:
+        return read_truth_doc(path)
+    except DescriptionError as exc:
+        raise ArtifactError(str(exc)) from exc
 
 
 def _missing(what: str, path: Path) -> str:
@@ -178,7 +188,7 @@ def render_report(demo_dir: str | os.PathLike, out_html: str | os.PathLike | Non
     if not lay.root.is_dir():
         raise ArtifactError(f"{lay.root}: demo directory does not exist")
     out = Path(out_html) if out_html is not None else lay.report_html
-    truth, graph = read_json(lay.truth_json), read_json(lay.graph_json)
+    truth, graph = _read_truth(lay.truth_json), read_json(lay.graph_json)
     metrics, cert, demo = read_json(lay.metrics_json), read_json(lay.certificate_json), read_json(lay.demo_json)
 
     if cert is not None and not isinstance(cert.get("tasks"), list):  # fail before drawing anything

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib import colormaps
 
+from scenes.description import read_truth_doc
 from scenes.outcome import Outcome
 
 from ._errors import ArtifactError
@@ -52,7 +53,7 @@ def png_of_teaser(demo_dir: str | Path, seed: int = 0) -> bytes:
     if not lay.scene_urdf.exists():
         raise ArtifactError(f"{lay.scene_urdf}: the teaser needs the reconstruction")
     scan = load_scan(lay.scan_npz, lay.labels_json)
-    azim = view_azimuth(json.loads(lay.truth_json.read_text()) if lay.truth_json.exists() else None)
+    azim = view_azimuth(read_truth_doc(lay.truth_json) if lay.truth_json.exists() else None)
     solids = solids_from_urdf(lay.scene_urdf)
     frame = _key_frame(lay)
     bounds = view_bounds(scan.points, scan.part_id)
