@@ -276,7 +276,10 @@ def _dispatch(pending: list[Job], store: Store, settings: RunSettings, slots: in
 
     from simcheck.batching.worker import certify_job
 
-    remote = ray.remote(max_retries=0, num_cpus=1)(certify_job)
+    # with a memory budget, Ray also reserves it (its ``memory`` resource is admission control only: a
+    # node runs no more tasks than its memory holds; the budget itself is enforced by the worker's watchdog)
+    memory = {"memory": int(settings.task_memory_mb * 2**20)} if settings.task_memory_mb else {}
+    remote = ray.remote(max_retries=0, num_cpus=1, **memory)(certify_job)
     inflight: dict = {}
     cancelled: set = set()
     backstop = (BACKSTOP_FACTOR * settings.task_timeout + BACKSTOP_SECONDS) if settings.task_timeout else None
