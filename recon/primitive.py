@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from scenes.description import ShapeKind, shape_inertia, shape_volume
+from scenes.description import ShapeKind, SolidProperties
 
 __all__ = ["PrimitiveKind", "Primitive", "SurfacePlane", "volume_weighted_centre"]
 
@@ -57,7 +57,7 @@ def _check_pose(T: np.ndarray, what: str) -> np.ndarray:
 
 
 @dataclass(frozen=True, eq=False)
-class Primitive:
+class Primitive(SolidProperties):
     """A primitive shape posed in the world.
 
     kind : PrimitiveKind
@@ -77,30 +77,11 @@ class Primitive:
         object.__setattr__(self, "size", size)
         object.__setattr__(self, "T_world_part", _check_pose(self.T_world_part, "T_world_part"))
 
-    # ----- scalar properties -----
-    @property
-    def radius(self) -> float:
-        """Radius (m) of a cylinder or sphere; half the smallest cross extent for a box."""
-        return float(min(self.size[0], self.size[1]) / 2.0)
-
-    @property
-    def length(self) -> float:
-        """Length (m) along the local z."""
-        return float(self.size[2])
-
+    # ----- scalar properties (radius, length, volume, inertia: SolidProperties) -----
     @property
     def center(self) -> np.ndarray:
         """(3,) world position of the shape's centre."""
         return self.T_world_part[:3, 3].copy()
-
-    @property
-    def volume(self) -> float:
-        """Volume in m^3."""
-        return shape_volume(self.kind, self.size)
-
-    def inertia(self, mass: float) -> np.ndarray:
-        """(3, 3) inertia tensor (kg m^2) about the centre, in the part frame (closed forms)."""
-        return shape_inertia(self.kind, self.size, mass)
 
     def transformed(self, T_new_world: np.ndarray) -> "Primitive":
         """The same shape moved rigidly by ``T_new_world`` (4, 4)."""

@@ -107,13 +107,18 @@ def transform_points(T_a_b: np.ndarray, p_b: np.ndarray) -> np.ndarray:
     return p_b @ T_a_b[:3, :3].T + T_a_b[:3, 3]
 
 
+def _finite_array(a, shape: tuple, what: str, kind: str) -> np.ndarray:
+    a = np.asarray(a, dtype=np.float64)
+    if a.shape != shape:
+        raise ValueError(f"{what} must be a {shape} {kind}, got shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{what} has non-finite entries")
+    return a
+
+
 def check_rotation(R, what: str = "rotation", atol: float = ROTATION_ATOL) -> np.ndarray:
     """``R`` as a (3, 3) float64 array; ``ValueError`` naming ``what`` unless it is a proper rotation."""
-    R = np.asarray(R, dtype=np.float64)
-    if R.shape != (3, 3):
-        raise ValueError(f"{what} must be a (3, 3) rotation, got shape {R.shape}")
-    if not np.all(np.isfinite(R)):
-        raise ValueError(f"{what} has non-finite entries")
+    R = _finite_array(R, (3, 3), what, "rotation")
     err = float(np.abs(R.T @ R - np.eye(3)).max())
     if err > atol or abs(float(np.linalg.det(R)) - 1.0) > atol:
         raise ValueError(f"{what} is not a rotation (|R^T R - I| = {err:.2g}, det = {np.linalg.det(R):.6g})")
@@ -122,11 +127,7 @@ def check_rotation(R, what: str = "rotation", atol: float = ROTATION_ATOL) -> np
 
 def check_pose(T, what: str = "pose", atol: float = ROTATION_ATOL) -> np.ndarray:
     """``T`` as a (4, 4) float64 rigid transform; ``ValueError`` naming ``what`` when it is not one."""
-    T = np.asarray(T, dtype=np.float64)
-    if T.shape != (4, 4):
-        raise ValueError(f"{what} must be a (4, 4) pose, got shape {T.shape}")
-    if not np.all(np.isfinite(T)):
-        raise ValueError(f"{what} has non-finite entries")
+    T = _finite_array(T, (4, 4), what, "pose")
     if not np.allclose(T[3], [0.0, 0.0, 0.0, 1.0], atol=atol):
         raise ValueError(f"{what}: last row must be (0, 0, 0, 1), got {T[3]}")
     check_rotation(T[:3, :3], what, atol)

@@ -17,7 +17,7 @@ from enum import Enum
 
 import numpy as np
 
-__all__ = ["ShapeKind", "Material", "Shape", "shape_volume", "shape_inertia", "mass_properties"]
+__all__ = ["ShapeKind", "Material", "SolidProperties", "Shape", "shape_volume", "shape_inertia", "mass_properties"]
 
 
 class ShapeKind(str, Enum):
@@ -75,8 +75,35 @@ def _size3(size) -> np.ndarray:
     return s
 
 
+class SolidProperties:
+    """Radius, length, volume and inertia of anything with a ``kind`` (:class:`ShapeKind`) and a ``size`` (3,)
+    in this module's convention (:class:`Shape`, ``recon.Primitive``)."""
+
+    kind: ShapeKind
+    size: np.ndarray
+
+    @property
+    def radius(self) -> float:
+        """Radius (m) of a cylinder or sphere; half the smaller cross extent of a box."""
+        return float(min(self.size[0], self.size[1]) / 2.0)
+
+    @property
+    def length(self) -> float:
+        """Extent along the local z, metres."""
+        return float(self.size[2])
+
+    @property
+    def volume(self) -> float:
+        """m^3 of the solid (0 for a mesh)."""
+        return shape_volume(self.kind, self.size)
+
+    def inertia(self, mass: float) -> np.ndarray:
+        """(3, 3) inertia (kg m^2) of a solid of ``mass`` kg about its centre, in its own axes."""
+        return shape_inertia(self.kind, self.size, mass)
+
+
 @dataclass(frozen=True, eq=False)
-class Shape:
+class Shape(SolidProperties):
     """One shape of a link.
 
     kind : ShapeKind
@@ -118,26 +145,6 @@ class Shape:
     def sphere(radius: float, T_link_shape=None, **kw) -> "Shape":
         """A sphere of ``radius`` (metres)."""
         return Shape(ShapeKind.SPHERE, [2.0 * radius] * 3, np.eye(4) if T_link_shape is None else T_link_shape, **kw)
-
-    # ----- scalar properties
-    @property
-    def radius(self) -> float:
-        """Radius (m) of a cylinder or sphere; half the smaller cross extent of a box."""
-        return float(min(self.size[0], self.size[1]) / 2.0)
-
-    @property
-    def length(self) -> float:
-        """Extent along the local z, metres."""
-        return float(self.size[2])
-
-    @property
-    def volume(self) -> float:
-        """m^3 of the solid (0 for a mesh)."""
-        return shape_volume(self.kind, self.size)
-
-    def inertia(self, mass: float) -> np.ndarray:
-        """(3, 3) inertia (kg m^2) of a solid of ``mass`` kg about its centre, in the shape's axes."""
-        return shape_inertia(self.kind, self.size, mass)
 
     # ----- geometry
     def corners(self) -> np.ndarray:

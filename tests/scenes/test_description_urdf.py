@@ -163,3 +163,15 @@ def test_pose_helpers_round_trip():
         xyz, rpy = xyz_rpy_from_T(T)
         assert np.allclose(T_from_xyz_rpy(xyz, rpy), T, atol=1e-12)
         assert np.allclose(T_inverse(T) @ T, np.eye(4), atol=1e-12)
+
+
+@pytest.mark.parametrize("T, message", [
+    (np.eye(3), r"must be a \(4, 4\) pose, got shape \(3, 3\)"),
+    (np.full((4, 4), np.nan), "non-finite"),
+    (np.diag([1.0, 1.0, 2.0, 1.0]), "is not a rotation"),
+    (np.diag([1.0, 1.0, -1.0, 1.0]), "is not a rotation"),      # a reflection: det -1
+])
+def test_checked_poses_name_what_is_wrong(T, message):
+    from scenes.description import check_pose
+    with pytest.raises(ValueError, match=message):
+        check_pose(T, "T_world_part")
