@@ -13,6 +13,8 @@ Each entry is a scene to certify or a scan to reconstruct first::
       seed: 0                             # optional (default 0): planning and reconstruction seed
       amount: 0.2                         # optional: opening for every task of the entry (m or rad)
       robot: robot.yaml                   # optional: "default" or a robot spec file
+      robust: 20                          # optional: certify each task in 20 sampled worlds (simcheck.robust)
+      min_success: 0.9                    # optional with robust (default 0.9)
 
 Relative paths are relative to the manifest's folder. Any problem (unknown field, missing file, a task
 naming a joint the scene lacks...) raises :class:`ManifestError` naming the manifest, the line and the
@@ -41,7 +43,8 @@ ALL_MOVABLE = "all-movable"
 #: values of the internal ``_fault`` field
 FAULTS = ("raise", "segfault", "exit", "hang", "memory")
 _FAULTS_ENV = "SIMCHECK_BATCH_TEST_FAULTS"
-_FIELDS = {"scene", "against", "scan", "labels", "truth", "tasks", "robot", "seed", "amount", "robust", "_fault"}
+_FIELDS = {"scene", "against", "scan", "labels", "truth", "tasks", "robot", "seed", "amount", "robust", "min_success",
+           "_fault"}
 
 
 class ManifestError(SimcheckInputError):
@@ -62,6 +65,8 @@ class Entry:
         robot: "default" or a robot spec file path.
         seed: planning (and reconstruction) seed.
         amount: opening for every task (m or rad), or None for the default.
+        robust: sampled worlds per task (``simcheck certify --robust N``), or None.
+        min_success: the robust success rate a task needs (with ``robust``).
         fault: internal test hook (one of FAULTS) or None.
     """
 
@@ -75,6 +80,8 @@ class Entry:
     robot: str
     seed: int
     amount: float | None
+    robust: int | None = None
+    min_success: float = 0.9
     fault: str | None = None
 
 
@@ -179,8 +186,16 @@ def _entry(path: Path, line: int, doc: dict, lines: dict) -> Entry:
             raise fail(field, f"file {p} does not exist")
         return p
 
-    if "robust" in doc:
-        raise fail("robust", "not supported yet by simcheck certify (remove the field)")
+    robust, min_success = doc.get("robust"), doc.get("min_success", 0.9)
+    if robust is not None or "min_success" in doc:
+        from simcheck.robust_spreads import check_robust_args
+
+        if robust is None:
+            raise fail("min_success", "needs 'robust' (the number of sampled worlds)")
+        try:
+            check_robust_args(robust, min_success)
+        except SimcheckInputError as exc:
+            raise fail(str(exc).split(":")[0], str(exc)) from exc
     if "scene" in doc:
         for field in ("labels", "truth"):
             if field in doc:
@@ -209,7 +224,7 @@ def _entry(path: Path, line: int, doc: dict, lines: dict) -> Entry:
         _check_tasks(scene, tasks, amount, fail)
     name = str(doc["scene"] if scene is not None else doc["scan"])
     return Entry(line, name, scene, against, scan, labels, tasks, robot, int(seed),
-                 float(amount) if amount is not None else None, fault)
+                 float(amount) if amount is not None else None, robust, float(min_success), fault)
 
 
 def _tasks(value, fail) -> tuple[str, ...] | None:

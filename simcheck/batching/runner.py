@@ -75,6 +75,8 @@ def _settings(entry: Entry, settings: RunSettings) -> dict:
 
     out = {"seed": entry.seed, "amount": entry.amount, "criteria": DEFAULT_CRITERIA.to_dict(),
            "physics": dataclasses.asdict(DEFAULT_PHYSICS), "images": settings.images}
+    if entry.robust is not None:
+        out.update(robust=entry.robust, min_success=entry.min_success)
     if entry.fault:
         out["fault"] = entry.fault
     return out
@@ -89,7 +91,8 @@ def _scene_jobs(entry: Entry, scene: Path, against: Path | None, tasks: list[str
         key = task_key(digests[0], digests[1], task, digests[2], _settings(entry, settings))
         row = {"scene": entry.name, "task": task, "line": entry.line}
         args = {"scene": str(scene), "against": str(against) if against else None, "task": task,
-                "robot": entry.robot, "seed": entry.seed, "amount": entry.amount, "fault": entry.fault}
+                "robot": entry.robot, "seed": entry.seed, "amount": entry.amount, "fault": entry.fault,
+                "robust": entry.robust, "min_success": entry.min_success}
         fixed = None
         if missing and task in missing:
             fixed = {"status": "failed", "reason": missing[task], "certificate": "", "attempts": 0}

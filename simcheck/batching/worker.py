@@ -116,7 +116,7 @@ def certify_job(job: dict) -> dict:
     ``job`` (JSON-ready): ``store`` (the batch folder), ``key``, ``scene``, ``against`` (or None), ``task``
     ("open-drawer:JOINT"), ``robot`` ("default" or a spec file), ``seed``, ``amount`` (or None),
     ``images`` (bool), ``timeout`` (s or None), ``memory_mb`` (or None), ``attempt`` (1-based),
-    ``fault`` (internal test hook or None), ``row`` (scene name, task, line: copied into the record).
+    ``robust``/``min_success`` (sampled worlds, or None), ``fault`` (internal test hook or None), ``row`` (scene name, task, line: copied into the record).
     """
     from simcheck.batching.store import Store
 
@@ -140,9 +140,18 @@ def certify_job(job: dict) -> dict:
         cpu0 = time.process_time()
         with holder["budget"]:
             _fault(job.get("fault"))
-            cert = certify(job["scene"], [job["task"]], against=job["against"], seed=job["seed"], out=tmp,
-                           robot=load_robot_spec(job["robot"]),
-                           amounts=[job["amount"]] if job["amount"] is not None else None, images=job["images"])
+            kwargs = dict(against=job["against"], seed=job["seed"], out=tmp, robot=load_robot_spec(job["robot"]),
+                          amounts=[job["amount"]] if job["amount"] is not None else None, images=job["images"])
+            if job.get("robust") is None:
+                cert = certify(job["scene"], [job["task"]], **kwargs)
+            else:   # certify(robust=N) with its sampled worlds run in this worker's one process-pool slot
+                from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS
+                from simcheck.robust import certify_robustly
+
+                cert = certify_robustly(certify, job["scene"], [job["task"]], robust=job["robust"],
+                                        min_success=job["min_success"], replay_sample=None, planner=None,
+                                        criteria=DEFAULT_CRITERIA, physics=DEFAULT_PHYSICS, video=False, gui=False,
+                                        workers=1, **kwargs)
         t = cert.tasks[0]
         from scenes.outcome import Outcome
 

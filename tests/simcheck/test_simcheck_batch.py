@@ -129,6 +129,8 @@ def test_malformed_entry_exits_2_naming_line_and_field(kitchens, tmp_path, capsy
     ("- scan: {k}/k0/truth.urdf\n  tasks: all-movable\n", ":1: field 'labels' is missing"),
     ("- scene: {k}/k0/truth.urdf\n  seed: -1\n", ":2: field 'seed'"),
     ("- scene: {k}/k0/truth.urdf\n  _fault: segfault\n", ":2: field '_fault': unknown field"),
+    ("- scene: {k}/k0/truth.urdf\n  robust: 0\n", ":2: field 'robust'"),
+    ("- scene: {k}/k0/truth.urdf\n  robust: 5\n  min_success: 2\n", ":3: field 'min_success'"),
 ])
 def test_manifest_errors_name_line_and_field(kitchens, tmp_path, text, where):
     manifest = tmp_path / "m.yaml"
