@@ -6,7 +6,6 @@ in Drake (when installed); no two links overlap at q = 0; and the same input giv
 
 from __future__ import annotations
 
-import itertools
 import os
 import subprocess
 import sys
@@ -14,6 +13,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+
+from simcheck.rest import drake_rest, link_overlaps, moved_joints, mujoco_rest, pybullet_rest
 
 REST_SECONDS = 2.0
 MAX_SLIDE = 1e-3      # m a prismatic joint may move at rest
@@ -43,114 +44,15 @@ def urdf(request, kitchen) -> Path:
     return kitchen[request.param]
 
 
-def _link_shapes(path: Path) -> dict[str, list]:
-    """{link: [(coal shape, coal.Transform3s world pose), ...]} of the URDF's collision shapes at q = 0."""
-    import coal
-    import yourdfpy
-
-    u = yourdfpy.URDF.load(str(path), build_scene_graph=True, load_meshes=False, build_collision_scene_graph=False)
-    out = {}
-    for name, link in u.link_map.items():
-        T_wl = u.get_transform(name, u.base_link)
-        shapes = []
-        for c in link.collisions:
-            g = c.geometry
-            T = T_wl @ (c.origin if c.origin is not None else np.eye(4))
-            if g.box is not None:
-                s = coal.Box(*g.box.size)
-            elif g.cylinder is not None:
-                s = coal.Cylinder(g.cylinder.radius, g.cylinder.length)
-            else:
-                s = coal.Sphere(g.sphere.radius)
-            shapes.append((s, coal.Transform3s(T[:3, :3].copy(), T[:3, 3].copy())))
-        out[name] = shapes
-    return out
-
-
 def test_no_two_links_overlap_at_rest(urdf):
     """Signed distance (coal, an engine independent of recon's own test) between every pair of links."""
-    import coal
-
-    shapes = _link_shapes(urdf)
-    overlaps = []
-    for a, b in itertools.combinations(shapes, 2):
-        for (sa, ta), (sb, tb) in itertools.product(shapes[a], shapes[b]):
-            d = coal.distance(sa, ta, sb, tb, coal.DistanceRequest(), coal.DistanceResult())
-            if d < -MAX_OVERLAP:
-                overlaps.append((a, b, round(d * 1e3, 2)))
-    assert not overlaps, f"{urdf}: links overlapping at q = 0 (mm): {overlaps}"
+    overlaps = link_overlaps(urdf, MAX_OVERLAP)
+    assert not overlaps, f"{urdf}: links overlapping at q = 0 (mm): {[(a, b, round(d * 1e3, 2)) for a, b, d in overlaps]}"
 
 
 def _assert_still(moved: dict[str, tuple[str, float]], what: str):
-    bad = {n: round(v, 5) for n, (kind, v) in moved.items()
-           if abs(v) > (MAX_SLIDE if kind == "slide" else MAX_HINGE)}
+    bad = {n: round(v, 5) for n, v in moved_joints(moved, MAX_SLIDE, MAX_HINGE).items()}
     assert not bad, f"{what}: joints moved at rest (m or rad): {bad}"
-
-
-def mujoco_rest(path: Path, seconds: float = REST_SECONDS) -> dict[str, tuple[str, float]]:
-    """{joint: ("slide" | "hinge", displacement)} after ``seconds`` of gravity from q = 0 in MuJoCo."""
-    import mujoco
-
-    m = mujoco.MjModel.from_xml_path(str(path))
-    d = mujoco.MjData(m)
-    mujoco.mj_forward(m, d)
-    q0 = d.qpos.copy()
-    for _ in range(int(round(seconds / m.opt.timestep))):
-        mujoco.mj_step(m, d)
-    out = {}
-    for j in range(m.njnt):
-        kind = int(m.jnt_type[j])
-        if kind in (int(mujoco.mjtJoint.mjJNT_SLIDE), int(mujoco.mjtJoint.mjJNT_HINGE)):
-            a = m.jnt_qposadr[j]
-            out[mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j)] = (
-                "slide" if kind == int(mujoco.mjtJoint.mjJNT_SLIDE) else "hinge", float(d.qpos[a] - q0[a]))
-    return out
-
-
-def pybullet_rest(path: Path, seconds: float = REST_SECONDS, dt: float = 1 / 240) -> dict[str, tuple[str, float]]:
-    """The same in PyBullet: fixed base, self-collision on, the default joint motors off (free joints)."""
-    import pybullet as pb
-
-    c = pb.connect(pb.DIRECT)
-    try:
-        pb.setGravity(0, 0, -9.81, physicsClientId=c)
-        pb.setTimeStep(dt, physicsClientId=c)
-        body = pb.loadURDF(str(path), useFixedBase=True, physicsClientId=c,
-                           flags=pb.URDF_USE_SELF_COLLISION | pb.URDF_USE_INERTIA_FROM_FILE)
-        joints = {}
-        for j in range(pb.getNumJoints(body, physicsClientId=c)):
-            info = pb.getJointInfo(body, j, physicsClientId=c)
-            if info[2] in (pb.JOINT_REVOLUTE, pb.JOINT_PRISMATIC):
-                pb.setJointMotorControl2(body, j, pb.VELOCITY_CONTROL, force=0, physicsClientId=c)
-                joints[j] = (info[1].decode(), "slide" if info[2] == pb.JOINT_PRISMATIC else "hinge",
-                             pb.getJointState(body, j, physicsClientId=c)[0])
-        for _ in range(int(round(seconds / dt))):
-            pb.stepSimulation(physicsClientId=c)
-        return {name: (kind, pb.getJointState(body, j, physicsClientId=c)[0] - q0)
-                for j, (name, kind, q0) in joints.items()}
-    finally:
-        pb.disconnect(c)
-
-
-def drake_rest(path: Path, seconds: float = REST_SECONDS) -> dict[str, tuple[str, float]]:
-    """The same in Drake (discrete MultibodyPlant with its SceneGraph, 1 ms steps)."""
-    from pydrake.multibody.parsing import Parser
-    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
-    from pydrake.multibody.tree import PrismaticJoint
-    from pydrake.systems.analysis import Simulator
-    from pydrake.systems.framework import DiagramBuilder
-
-    builder = DiagramBuilder()
-    plant, _ = AddMultibodyPlantSceneGraph(builder, time_step=0.001)
-    Parser(plant).AddModels(str(path))
-    plant.Finalize()
-    sim = Simulator(builder.Build())
-    ctx = plant.GetMyContextFromRoot(sim.get_mutable_context())
-    joints = [plant.get_joint(i) for i in plant.GetJointIndices() if plant.get_joint(i).num_positions() == 1]
-    q0 = {j.name(): float(j.GetOnePosition(ctx)) for j in joints}
-    sim.AdvanceTo(seconds)
-    return {j.name(): ("slide" if isinstance(j, PrismaticJoint) else "hinge", float(j.GetOnePosition(ctx)) - q0[j.name()])
-            for j in joints}
 
 
 def test_rests_in_mujoco(urdf):
