@@ -49,6 +49,14 @@ class JointUncertaintyConfig:
     """A part's points are subsampled (seeded) to at most this many before resampling."""
     obstacle_margin: float = 0.1
     """Obstacle points farther (m) than this beyond the joint's parts' reach are left out of its sweeps."""
+    drawer_travel_prior: float = 0.05
+    """σ (m) of a drawer's travel that no scan shows: its box is hidden behind its front, and the travel is
+    ``drawer_travel_fraction`` of the body's depth (the scenes' drawers travel 0.8 of their own box, which
+    can be centimetres shallower). Added in quadrature to the bootstrap spread of a drawer's upper limit."""
+    door_stop_prior: float = 0.09
+    """σ (rad) of a door's stop when no obstacle limits its swing: the hinge's stop is not seen; the
+    estimate assumes ``door_max_angle`` (furniture hinges stop at 92-110 deg, σ of a uniform 0.3 rad
+    range). Added in quadrature to the bootstrap spread of such a door's upper limit."""
 
 
 @dataclass(frozen=True)

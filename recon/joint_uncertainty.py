@@ -13,7 +13,10 @@ reference; the spreads are RMS deviations from it:
     axis_deg  RMS angle (deg) between a replicate's axis and the reference axis
     origin_m  RMS distance (m) of a replicate's axis point from the reference axis line, perpendicular
               to the axis
-    upper     RMS deviation of the upper limit (m or rad)
+    upper     RMS deviation of the upper limit (m or rad), combined in quadrature with the template's
+              prior on what the scan cannot show: a drawer's travel (its box is hidden:
+              ``drawer_travel_prior``) and the stop of a door whose swing no obstacle limits
+              (``door_stop_prior``)
 
 What the bootstrap measures is the sampling variability of the fit: few points, noisy points and
 uneven coverage widen it. It does not see systematic errors the fit shares across replicates (a part
@@ -37,8 +40,9 @@ from recon.primitive import Primitive, PrimitiveKind
 
 __all__ = ["METHOD", "with_joint_uncertainty", "joint_uncertainty"]
 
-METHOD = "bootstrap"
-"""The ``method`` recorded in graph.json."""
+METHOD = "bootstrap+template-prior"
+"""The ``method`` recorded in graph.json: the bootstrap, plus the template's prior on what no scan shows
+(a drawer's hidden travel, a free door's stop) in the upper limit's spread."""
 
 
 @dataclass(frozen=True)
@@ -119,7 +123,12 @@ def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, han
         if sweep:
             dup.append(upper - ref[2])
     rms = lambda x: float(np.sqrt(np.mean(np.square(x))))   # noqa: E731
-    return JointUncertainty(rms(ang), rms(off), rms(dup) if dup else 0.0, int(ucfg.samples), METHOD)
+    upper = rms(dup) if dup else 0.0
+    if jtype is JointType.PRISMATIC:
+        prior = ucfg.drawer_travel_prior
+    else:
+        prior = ucfg.door_stop_prior if ref[2] >= config.door_max_angle - 1e-9 else 0.0
+    return JointUncertainty(rms(ang), rms(off), float(np.hypot(upper, prior)), int(ucfg.samples), METHOD)
 
 
 def _capped(part: _PartData, n: int, rng: np.random.Generator) -> _PartData:

@@ -37,7 +37,7 @@ def dense_and_sparse(synth):
 def test_sparsely_seen_door_is_less_certain_than_a_well_seen_one(dense_and_sparse):
     dense, sparse = (_door(r).uncertainty for r in dense_and_sparse)
     assert dense.samples == sparse.samples == JointUncertaintyConfig().samples
-    assert dense.method == "bootstrap"
+    assert dense.method == "bootstrap+template-prior"
     assert sparse.origin_m > 2.0 * dense.origin_m, (dense, sparse)
     assert sparse.axis_deg > dense.axis_deg, (dense, sparse)
     assert 0.0 < dense.origin_m < 0.01
@@ -51,6 +51,16 @@ def test_every_movable_joint_has_finite_spreads_and_fixed_joints_none(dense_and_
             else:
                 u = j.uncertainty
                 assert all(np.isfinite(v) and v >= 0.0 for v in (u.axis_deg, u.origin_m, u.upper)), (j.name, u)
+
+
+def test_upper_spread_carries_the_template_prior_of_what_no_scan_shows(dense_and_sparse):
+    cfg = JointUncertaintyConfig()
+    for rec in dense_and_sparse:
+        drawer = next(j for j in rec.joints() if "drawer" in j.name)
+        assert drawer.uncertainty.upper >= cfg.drawer_travel_prior
+        door = _door(rec)
+        if door.upper >= ReconConfig().door_max_angle - 1e-9:
+            assert door.uncertainty.upper >= cfg.door_stop_prior
 
 
 def test_uncertainty_round_trips_through_graph_json(dense_and_sparse):
