@@ -156,15 +156,13 @@ def _hangs_from(g: tuple, h: tuple, groups_parent: dict) -> bool:
 def _cut(prim: Primitive, other: Primitive, gap: float, cfg: ClearanceConfig) -> tuple[Primitive, float, str] | None:
     """``prim`` with one face moved inward along one of its axes so that its projection on that axis
     clears ``other``'s by ``gap``: the smallest such cut that keeps ``min_keep_fraction`` of the extent.
+    A cylinder cut across its axis (a sphere cut along any axis) loses that much diameter and moves
+    its centre half of it away from ``other``.
     Returns (cut shape, cut depth m, "+x" / "-y" ...: the face moved), or None."""
     R, c, h = _frame(prim)
     Ro, co, ho = _frame(other)
     best = None
     for k in range(3):
-        if prim.kind is PrimitiveKind.CYLINDER and k == 1:
-            continue        # the radial cut along x shrinks the diameter: y gives nothing new
-        if prim.kind is PrimitiveKind.SPHERE and k > 0:
-            continue
         u = R[:, k]
         r_o = _radius(Ro, ho, u)
         lo_o, hi_o = float(co @ u) - r_o, float(co @ u) + r_o

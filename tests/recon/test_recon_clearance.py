@@ -106,3 +106,18 @@ def test_two_walls_crossing_at_a_corner_are_cut_apart():
     a, b = (Primitive(PrimitiveKind.BOX, w.size, w.T_world_wall) for w in cleared)
     assert separation(a, b) >= -1e-9
     assert sum(not np.allclose(w.size, c.size) for w, c in zip(walls, cleared)) == 1      # one of them shortened
+
+
+def test_a_cylinder_is_cut_across_its_axis_on_the_side_facing_the_other_shape():
+    T = np.eye(4)
+    T[:3, 3] = [0.0, 0.05, 0.5]
+    post = Primitive(PrimitiveKind.CYLINDER, [0.04, 0.04, 1.0], T)     # r = 20 mm at y = 30..70 mm
+    panel = _box([-0.5, -0.2, 0.0], [0.5, 0.04, 1.0])                  # reaches y = 40 mm: 10 mm into the post
+    obj = ObjectReconstruction(1, "cabinet", "cab1", 1, (_part(1, "body", panel), _part(2, "leg", post)), (),
+                               (JointEstimate("cab1_body1_joint", "fixed", None, 1, np.zeros(3), panel.center),
+                                JointEstimate("cab1_leg2_joint", "fixed", 1, 2, np.zeros(3), post.center)),
+                               (), np.eye(4), np.ones(3))
+    (new,), _ = cleared_scene([obj], (), ClearanceConfig())
+    cut = new.part(2).solids[0]
+    assert cut.size[0] == pytest.approx(0.03) and cut.size[2] == pytest.approx(1.0)
+    assert cut.center[1] == pytest.approx(0.055) and separation(panel, cut) >= -1e-9
