@@ -44,10 +44,10 @@ class GripperModel:
     the fingers instead, so the simulated grasp transmits no torque.
 
     Defaults -- the Franka Hand of the Panda: ``grip_force`` 70 N is its rated continuous grip force
-    (Franka Emika's datasheet: 70 N continuous, 140 N maximum); ``pad_friction`` 0.8 is an ASSUMPTION
-    for rubber-covered fingertip pads on a metal or lacquered handle (dry rubber on metal or wood: 0.6-0.9
-    in engineering friction tables); stock hard-plastic fingertips hold less -- set the value of the real
-    pads. Holding force: 112 N.
+    (Franka Emika's datasheet: 70 N continuous, 140 N maximum); ``pad_friction`` 1.0 is an ASSUMPTION
+    for rubber-covered fingertip pads on a dry metal or lacquered handle (dry rubber on dry hard surfaces:
+    about 0.6 to above 1 in engineering friction tables); stock hard-plastic fingertips hold less -- set
+    the value of the real pads. Holding force: 140 N.
 
     Attributes:
         grip_force: rated continuous squeeze of the fingers, N.
@@ -55,7 +55,7 @@ class GripperModel:
     """
 
     grip_force: float = 70.0
-    pad_friction: float = 0.8
+    pad_friction: float = 1.0
 
     def __post_init__(self) -> None:
         for name in ("grip_force", "pad_friction"):

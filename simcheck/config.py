@@ -62,8 +62,9 @@ class PhysicsConfig:
         grasp_contact_distance: a finger's contact point with the handle touches when it is at most this
             far, metres (PyBullet keeps contact points up to ``contact_breaking_threshold`` apart).
         grasp_normal_angle: largest angle, rad, between a finger's contact normal and its opening
-            direction for the contact to be on the finger's pad (30 deg: a fingertip or finger side
-            touching is 90 deg off; a pad on a round or slightly tilted bar is a few deg off).
+            direction for the contact to be on the finger's pad (45 deg: a fingertip or finger side
+            touching is 90 deg off; a pad on a round or slightly tilted bar is a few deg off, on a box bar's
+            edge up to ~35 deg: 30 deg refused a truth drawer handle of kitchen seed 2 at 34 deg).
         grasp_min_travel: a finger nearer than this (m or rad) to fully closed was not stopped by the handle.
         grasp_min_width: the handle between the two pads' contact points must be at least this wide, metres.
         robot_position_gain: PyBullet position-control gain of the robot joints.
@@ -96,7 +97,7 @@ class PhysicsConfig:
     grasp_force_window: float = 0.05
     grasp_max_turn: float = 0.3490658503988659
     grasp_contact_distance: float = 0.0005
-    grasp_normal_angle: float = 0.5235987755982988
+    grasp_normal_angle: float = 0.7853981633974483
     grasp_min_travel: float = 0.001
     grasp_min_width: float = 0.003
     robot_position_gain: float = 0.3

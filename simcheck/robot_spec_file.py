@@ -12,7 +12,7 @@ A robot spec file holds the fields of ``planners.RobotSpec`` (``urdf`` relative 
     home: [0, 0, 0, 0, -0.8, 0, -2.3, 0, 1.6]
     finger_open: 0.04
     finger_closed: 0.0
-    gripper: {grip_force: 70, pad_friction: 0.8}   # what the grasp can hold
+    gripper: {grip_force: 70, pad_friction: 1.0}   # what the grasp can hold
 
 ``gripper`` (optional; default the Franka Hand, see ``planners.robot.GripperModel``) bounds the force an
 executed grasp transmits: ``2 * pad_friction * grip_force`` N.
