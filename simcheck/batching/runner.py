@@ -180,7 +180,12 @@ def ray_session(workers: int | None, address: str | None):
         kwargs = dict(include_dashboard=False, log_to_driver=False, logging_level=logging.ERROR,
                       configure_logging=True)
         if address:
-            ray.init(address=address, **kwargs)
+            try:
+                ray.init(address=address, **({} if address.startswith("ray://") else kwargs))
+            except (ConnectionError, ValueError, RuntimeError) as exc:
+                from simcheck.errors import SimcheckInputError
+                raise SimcheckInputError(f"--address {address}: no Ray cluster could be joined ({exc}); start "
+                                         "one with `ray start --head`, or leave --address out for a local Ray") from exc
         else:
             ray.init(address="local", num_cpus=workers, **kwargs)
             from simcheck.batching.guardian import start_guardian
