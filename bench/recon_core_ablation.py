@@ -16,7 +16,6 @@ shared by parent/child primitives (the interpenetration Alg. 1 is meant to remov
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import logging
 import sys
 import time
@@ -48,7 +47,7 @@ def run(scene_dir: Path, variant: str, samples: int) -> dict:
     from recon.metrics import (MetricsConfig, estimate_from_reconstruction, evaluate_scene, joint_summary,
                                mean_average_precision, read_truth)
 
-    cfg = dataclasses.replace(ReconConfig(), **VARIANTS[variant])
+    cfg = ReconConfig().replace(**VARIANTS[variant])
     t0 = time.perf_counter()
     rec = reconstruct(scene_dir / "scan.ply", scene_dir / "labels.json", config=cfg)
     seconds = time.perf_counter() - t0

@@ -39,7 +39,7 @@ Python API::
                                       #   or (part.primitive,)
         obj.joints                    # JointEstimate: name, type, parent_part_id, child_part_id,
                                       #   axis (3,), origin (3,), lower, upper, contact_score
-    recon.part_tree.contact_scores(obj, rec.config)   # {(a, b): score} every Eq. 1 contact (for
+    recon.part_tree.contact_scores(obj, rec.config.tree)   # {(a, b): score} every Eq. 1 contact (for
                                       #   mAP); score = Cont x template prior (weighted=False: raw Cont)
         obj.tree_edges()              # ((parent, child), ...) the estimated part tree
     rec.graph.supports, rec.graph.proximal, rec.warnings

@@ -5,7 +5,7 @@ face inside its carcass, a cabinet's back inside the fitted wall, a chair leg re
 Inside one rigid body that is harmless, but an engine that loads ``scene.urdf`` pushes overlapping
 links apart at once (a door swings open, a drawer slides out). This stage cuts the shapes so that
 every pair of links is at least separated (touching is allowed): the URDF writer then shrinks the
-collision shapes of moving parts by ``ReconConfig.collision_clearance``, so a moving part starts that
+collision shapes of moving parts by ``UrdfConfig.collision_clearance``, so a moving part starts that
 far from everything around it.
 
 Who yields, for each overlapping pair of shapes on two links:

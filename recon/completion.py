@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from recon.config import ReconConfig
+from recon.config import CompletionConfig, ContactConfig
 from recon.primitive import Primitive, PrimitiveKind, SurfacePlane
 
 __all__ = ["VERTICAL_SPAN_LABELS", "MOUNTED_LABELS", "LEGGED_CATEGORIES", "complete_vertical_parts",
@@ -54,7 +54,7 @@ def _extended(prim: Primitive, k: int, direction: np.ndarray, amount: float) -> 
 
 
 def mount_face(i: int, prims: dict[int, Primitive], labels: dict[int, str],
-               config: ReconConfig) -> tuple[int, SurfacePlane, float] | None:
+               config: CompletionConfig, contacts: ContactConfig) -> tuple[int, SurfacePlane, float] | None:
     """The face that mounted part ``i`` (a handle/knob) stands in front of: (part id of its mount, the
     mount's surface plane (normal out of the mount, world), gap (m) from part ``i``'s nearest corner to
     that plane). A drawer/door face is preferred to any other part's, then the smallest gap; only faces
@@ -66,9 +66,9 @@ def mount_face(i: int, prims: dict[int, Primitive], labels: dict[int, str],
     for j, other in prims.items():
         if j == i or labels[j] in MOUNTED_LABELS:
             continue
-        for pl in other.planes(config.cylinder_side_faces):
+        for pl in other.planes(contacts.cylinder_side_faces):
             gap = float(np.min(c @ pl.normal + pl.d))          # handle's nearest point above the face
-            if not (-config.theta_d <= gap <= config.completion_reach):
+            if not (-contacts.theta_d <= gap <= config.completion_reach):
                 continue
             B = np.linalg.svd(np.eye(3) - np.outer(pl.normal, pl.normal))[0][:, :2]
             poly = shapely.Polygon(pl.polygon @ B)
@@ -81,14 +81,14 @@ def mount_face(i: int, prims: dict[int, Primitive], labels: dict[int, str],
 
 
 def complete_mounted_parts(prims: dict[int, Primitive], labels: dict[int, str],
-                           config: ReconConfig) -> tuple[dict[int, Primitive], dict[int, float]]:
+                           config: CompletionConfig, contacts: ContactConfig) -> tuple[dict[int, Primitive], dict[int, float]]:
     """Extend handles/knobs back onto the face they are mounted on: (new prims, {part_id: metres})."""
     out, changes = dict(prims), {}
     for i, prim in prims.items():
         if labels[i] not in MOUNTED_LABELS or prim.kind is PrimitiveKind.SPHERE:
             continue
-        found = mount_face(i, prims, labels, config)
-        if found is None or found[2] <= config.theta_d / 2:
+        found = mount_face(i, prims, labels, config, contacts)
+        if found is None or found[2] <= contacts.theta_d / 2:
             continue
         n, gap = found[1].normal, found[2]
         k = int(np.argmax(np.abs(prim.T_world_part[:3, :3].T @ n)))
@@ -109,13 +109,13 @@ def _vertical_axis(prim: Primitive) -> int | None:
 
 
 def complete_vertical_parts(prims: dict[int, Primitive], labels: dict[int, str],
-                            config: ReconConfig) -> tuple[dict[int, Primitive], dict[int, tuple[float, float]]]:
+                            config: CompletionConfig, contacts: ContactConfig) -> tuple[dict[int, Primitive], dict[int, tuple[float, float]]]:
     """Extend legs to what supports / is supported by them.
 
     Returns (new {part_id: primitive}, {part_id: (metres added below, metres added above)}).
     """
     out, changes = dict(prims), {}
-    planes = {i: p.planes(config.cylinder_side_faces) for i, p in prims.items()}
+    planes = {i: p.planes(contacts.cylinder_side_faces) for i, p in prims.items()}
     for i, prim in prims.items():
         if labels[i] not in VERTICAL_SPAN_LABELS:
             continue
@@ -135,11 +135,11 @@ def complete_vertical_parts(prims: dict[int, Primitive], labels: dict[int, str],
                 z = float(pl.polygon[:, 2].mean())
                 if not shapely.Polygon(pl.polygon[:, :2]).buffer(1e-6).contains(xy):
                     continue
-                if pl.normal[2] > 0 and bottom - config.completion_reach <= z <= bottom + config.theta_d:
+                if pl.normal[2] > 0 and bottom - config.completion_reach <= z <= bottom + contacts.theta_d:
                     below.append(z)
-                elif pl.normal[2] < 0 and top - config.theta_d <= z <= top + config.completion_reach:
+                elif pl.normal[2] < 0 and top - contacts.theta_d <= z <= top + config.completion_reach:
                     above.append(z)
-        below = [z for z in below if bottom - config.completion_reach <= z <= bottom + config.theta_d]
+        below = [z for z in below if bottom - config.completion_reach <= z <= bottom + contacts.theta_d]
         new_bottom = max(below) if below else bottom
         new_top = min(above) if above else top
         if new_bottom >= bottom - 1e-9 and new_top <= top + 1e-9:
@@ -174,7 +174,7 @@ def _two_values(x: np.ndarray, mirror_about: float, tol: float) -> list[float] |
 
 
 def complete_missing_legs(category: str, prims: dict[int, Primitive], labels: dict[int, str],
-                          skipped, config: ReconConfig, base: int | None = None
+                          skipped, config: CompletionConfig, base: int | None = None
                           ) -> tuple[dict[int, Primitive], dict[int, np.ndarray]]:
     """Place the legs of a four-legged object that the camera missed.
 
@@ -234,7 +234,7 @@ _REACHES = {("frame", "headboard")}
 
 
 def complete_reaching_parts(prims: dict[int, Primitive], labels: dict[int, str],
-                            config: ReconConfig) -> tuple[dict[int, Primitive], dict[int, float]]:
+                            config: CompletionConfig, contacts: ContactConfig) -> tuple[dict[int, Primitive], dict[int, float]]:
     """Extend a box (a bed frame) along a horizontal axis of its own to the part it reaches by template
     (its headboard) when that part's near face lies beyond the box's end by more than ``theta_d`` and at
     most ``completion_reach`` (m), facing it. Returns (new prims, {part_id: metres added})."""
@@ -251,7 +251,7 @@ def complete_reaching_parts(prims: dict[int, Primitive], labels: dict[int, str],
             end = float(np.max(prim.corners() @ axis))
             near = float(np.min(prims[j].corners() @ axis))
             gap = near - end
-            if config.theta_d < gap <= config.completion_reach:
+            if contacts.theta_d < gap <= config.completion_reach:
                 out[i] = _extended(out[i], k, axis, gap)
                 changes[i] = gap
     return out, changes

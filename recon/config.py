@@ -1,40 +1,342 @@
-"""Every threshold of the reconstruction, named once, with its meaning and unit.
+"""Every threshold of the reconstruction, named once, with its meaning and unit, grouped by stage.
 
-``ReconConfig`` is frozen; build a variant with ``dataclasses.replace(config, theta_d=0.01)``.
+``ReconConfig`` holds one frozen group per stage; a stage function takes the groups it reads (most only
+its own), never the whole config. Lengths in metres, angles in radians, mass in kg.
+
+Field names are unique across groups, so a field can be set by name::
+
+    config = ReconConfig().replace(theta_d=0.01, refine=False)       # any fields, any groups
+    config = ReconConfig(contacts=ContactConfig(theta_d=0.01))       # or one group built whole
+    config = ReconConfig().replace(clearance={"enabled": False})     # a group by its name
+    config.contacts.theta_d                                          # read through its group
+    ReconConfig.from_flat(config.flat()) == config                   # {field: value} round trip
+
 The symbols of the paper (Sections II–III of Zhang et al., part-level scene reconstruction) are kept:
-``theta_a``, ``theta_d``, ``theta_c`` of Eq. 1.
+``theta_a``, ``theta_d``, ``theta_c`` of Eq. 1. Why a value is what it is: docs/decisions.md (recon).
 """
 
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
-__all__ = ["ClearanceConfig", "JointUncertaintyConfig", "ReconConfig"]
+__all__ = ["ReconConfig", "ScanConfig", "LevelingConfig", "FittingConfig", "CompletionConfig", "ContactConfig",
+           "TreeConfig", "RefinementConfig", "HandleConfig", "JointConfig", "ShapeConfig", "SceneConfig",
+           "WallConfig", "UrdfConfig", "JointUncertaintyConfig", "ClearanceConfig"]
 
 
 @dataclass(frozen=True)
-class ClearanceConfig:
-    """How the clearance stage (clearance.py) keeps the scene's links apart at q = 0. Lengths in metres."""
+class ScanConfig:
+    """Reading and cleaning the scan (scan.py, outliers.py)."""
 
-    enabled: bool = True
-    """Cut overlapping shapes apart (off only to measure what the stage does)."""
-    moving_gap: float = 0.0
-    """Gap left between shapes that move relative to each other (a door and its carcass). The URDF's
-    collision shapes of moving parts are also shrunk by ``ReconConfig.collision_clearance``; touching
-    solids therefore start that far apart in an engine."""
-    tolerance: float = 1e-6
-    """Overlaps up to this are left alone (rounding of the written file)."""
-    report_overlap: float = 5e-4
-    """A pair still overlapping by more than this after the stage is reported with a warning."""
-    min_keep_fraction: float = 0.25
-    """A cut never leaves less than this fraction of the shape's extent along the cut axis."""
-    wall_max_shift: float = 0.2
-    """A fitted wall moves back (out of the room) at most this far to clear an object."""
-    max_passes: int = 4
-    """Passes over the overlapping pairs (a cut can only shrink a shape, so few are needed)."""
-    contact_distance: float = 0.005
-    """Links whose shapes come this close at q = 0 are in contact at rest: scene.srdf lists them
-    (``disable_collisions``) for planners that read one (fronts hang 2-3 mm off their carcass)."""
+    min_part_points: int = 20
+    """A part with fewer points is skipped with a warning naming it (too few to fit a primitive)."""
+    max_scene_extent: float = 60.0
+    """A scan whose bounding box is larger than this (m) is refused: it is almost surely millimetres."""
+    outlier_neighbors: int = 16
+    """Statistical outlier removal (flying pixels): neighbours considered per point."""
+    outlier_std_ratio: float = 3.0
+    """... a point is an outlier when its mean neighbour distance exceeds the cloud's mean by this
+    many standard deviations."""
+
+
+@dataclass(frozen=True)
+class LevelingConfig:
+    """Finding the floor of a scan in a camera frame (leveling.py)."""
+
+    floor_ransac_distance: float = 0.02
+    """RANSAC inlier distance (m) of the floor plane."""
+    floor_candidates: int = 4
+    """Largest planes tried as the floor."""
+
+
+@dataclass(frozen=True)
+class FittingConfig:
+    """Eq. 3: the best primitive per part (fitting.py); also what counts as a thin panel."""
+
+    min_thickness: float = 0.01
+    """Smallest box/cylinder extent (m): flat or collinear parts are thickened to this."""
+    upright_tolerance: float = 0.15
+    """Use the yaw-only (gravity-aligned) box when its volume is within (1 + this) of the free 3D one."""
+    surface_samples: int = 600
+    """Points sampled on each candidate primitive's surface, h(M) of Eq. 3."""
+    fit_max_points: int = 3000
+    """Part clouds larger than this are subsampled (seeded) for fitting."""
+    icp_max_distance: float = 0.05
+    """ICP correspondence radius (m)."""
+    icp_iterations: int = 30
+    """ICP iteration cap per candidate."""
+    icp_min_improvement: float = 0.05
+    """ICP's pose is kept only if it lowers the score by this fraction (on noisy scans ICP otherwise
+    trades a few degrees of yaw for a fraction of a millimetre of score)."""
+    icp_candidate_ratio: float = 2.0
+    """Only candidates whose unaligned score is within this factor of the best one are ICP-aligned."""
+    noise_floor: float = 0.003
+    """Depth noise (m, robust σ across a box's best-seen face) below which extents are not corrected."""
+    edge_tail_fraction: float = 0.02
+    """Fraction of a box's points at each end of its best-seen axis that decide whether that end is a
+    noise tail (pulled in by the noise correction) or a rim of side faces (kept)."""
+    rim_min_extent: float = 0.3
+    """... and only for boxes this wide (m) along both other axes (table tops, bed frames), not handles."""
+    front_edge_density: float = 0.5
+    """A noisy vertical panel's (door / drawer front's) edges along its face lie where the density of its
+    front-face points along that axis falls to this fraction of the face's central density (the
+    half-maximum of a blurred step); label bleed beyond the true edge is about a third of that density."""
+    front_edge_bin_points: int = 20
+    """... the density profile's bins hold this many points at the face's central density (at least
+    ``front_edge_min_bin`` wide): fewer make the edge noisy, more blur it."""
+    front_edge_min_bin: float = 0.006
+    """... smallest bin width (m) of that profile."""
+    front_edge_max_trim: float = 0.03
+    """... an edge moves in from the 0.2 / 99.8 percentile extent by at most this (m); a deeper drop in
+    density is occlusion (a mattress in front of a headboard's lower half), not the panel's edge."""
+    front_edge_min_points: int = 150
+    """... a front face with fewer points keeps the percentile extents."""
+    front_thickness: float = 0.018
+    """Thickness (m) of a noisy vertical panel (door / drawer front): its seen face is the median of that
+    face's points and the panel extends this far behind it (18 mm board, as ``carcass_wall``)."""
+    min_face_points: int = 12
+    """The opposite face needs this many points (and a fifth of the best face's) to join a noise estimate."""
+    coverage_distance: float = 0.02
+    """A primitive surface sample is 'seen' when a scan point lies within this distance (m)."""
+    min_face_coverage: float = 0.25
+    """A primitive face with a smaller seen fraction counts as unobserved and is left out of the
+    Eq. 3 score (cameras miss faces against walls, floors and each other)."""
+    point_term_weight: float = 1.0
+    """Weight of the scan-to-primitive mean distance (m) added to the Eq. 3 score, so that leaving
+    unobserved faces out can never reward a primitive that does not explain the points."""
+    small_part_points: int = 400
+    """Parts with fewer points get only candidates aligned with their object's base part (their own
+    bounding box is too noisy to orient them)."""
+    box_preference: float = 0.1
+    """A cylinder or sphere wins only if its score is lower than the best box's by this fraction."""
+    candidates: tuple[str, ...] = ("box", "cylinder_x", "cylinder_y", "cylinder_z", "sphere")
+    """Candidate templates M^c: box, a cylinder along each box axis, sphere."""
+    panel_ratio: float = 0.3
+    """A part whose thinnest extent is below this fraction of the next one is a panel (a door or drawer
+    front): its thin axis is the opening's normal (fitting, joints and refinement read it)."""
+
+
+@dataclass(frozen=True)
+class CompletionConfig:
+    """Parts extended or placed where the scan missed them (completion.py)."""
+
+    completion_reach: float = 0.3
+    """Legs are extended to a surface above / below them, and hidden legs placed, at most this far (m)."""
+
+
+@dataclass(frozen=True)
+class ContactConfig:
+    """Surface planes Π and the Eq. 1 contact test (planes.py, contacts.py); every stage that asks
+    whether two faces touch uses these tolerances."""
+
+    planes: str = "exact"
+    """Where the planes Π of the contact test come from: "exact" primitive faces or "ransac" planes
+    of the part's points (the paper's way); see planes.py."""
+    ransac_planes: int = 6
+    """At most this many RANSAC planes per part."""
+    ransac_distance: float = 0.01
+    """RANSAC inlier distance (m)."""
+    ransac_min_fraction: float = 0.05
+    """A RANSAC plane needs at least this fraction of the part's points."""
+    cylinder_side_faces: int = 8
+    """A cylinder's side is represented by this many tangent rectangles (planes of Π)."""
+    theta_a: float = 0.97
+    """Align: |n_p · n_c| must reach this (cos 14°); 1 is parallel."""
+    theta_d: float = 0.025
+    """Dist: mean distance (m) from the child polygon's vertices to the parent plane, at most this."""
+    theta_c: float = 0.05
+    """Cont: intersection area / child polygon area, at least this."""
+
+
+@dataclass(frozen=True)
+class TreeConfig:
+    """Eq. 4: the part tree from the contact graph (part_tree.py)."""
+
+    foreign_parent_penalty: float = 0.2
+    """Template prior: an edge whose parent label is not one the child's template expects (a handle
+    under a body instead of its drawer) has its contact score multiplied by this (also in the mAP
+    ranking of :func:`recon.part_tree.contact_scores`)."""
+    near_parent_distance: float = 0.1
+    """A part with no Eq. 1 contact to a parent its template expects is hung from the nearest such
+    part closer than this (m) (noisy scans break contacts by a few centimetres)."""
+    near_parent_weight: float = 0.3
+    """Edge weight of that attachment at zero distance (below the contact scores of real contacts)."""
+    fallback_edge_weight: float = 1e-6
+    """Weight of the root -> part edge given to parts that touch nothing (they are reported)."""
+
+
+@dataclass(frozen=True)
+class RefinementConfig:
+    """Alg. 1: children rotated and moved onto their parents' planes (refinement.py)."""
+
+    refine: bool = True
+    """Run Alg. 1 (off only to measure what it does)."""
+    refine_align: float = 0.9
+    """Plane normals with |cos| above this are paired for the Kabsch rotation (cos 26°)."""
+    refine_max_angle: float = 0.35
+    """A refinement rotation larger than this (rad) is rejected as a bad pairing."""
+    snap_ambiguity: float = 0.05
+    """A child is translated onto its parent's contact plane only if no plane pair along another
+    direction has a contact score within this of the best pair's (else the snap is ambiguous)."""
+    snap_front_panels: bool = False
+    """Translate a front panel (door, drawer front: a child thinner than ``panel_ratio`` of its other
+    extents, parallel to the contact plane) onto its body's face. Off: the panel's seen face (the median
+    of thousands of points) is better measured than the body's front plane, which label bleed from the
+    fronts pushes out."""
+
+
+@dataclass(frozen=True)
+class HandleConfig:
+    """A handle as the shapes a gripper meets (handle_shapes.py)."""
+
+    handle_shapes: bool = True
+    """Write a handle as a bar on two posts (a knob: a cap on its stem) instead of the one box
+    enveloping it down to its mount."""
+    handle_bleed_margin: float = 0.008
+    """Handle points within this (m) of their mount's face are the front's own surface (label bleed)
+    or its depth noise; they do not measure the bar."""
+    handle_face_window: float = 0.04
+    """The mount's points within this (m) of its fitted face, and within the handle's reach plus this
+    along it, show where the face behind the handle was seen (their median height)."""
+    handle_min_points: int = 15
+    """A handle needs this many points clear of the face for a bar/knob; else it keeps its envelope."""
+    handle_extent_percentile: float = 2.0
+    """A handle's extents along the face come from the [p, 100 - p] percentiles (%) of its points clear
+    of the face (widened by 1 / (1 - 2p/100))."""
+    handle_middle_percentile: float = 10.0
+    """A bar's middle across it is the mean of this and the opposite percentile (%) of its points (bleed
+    and lateral noise spread its edges unevenly)."""
+    handle_outer_percentile: float = 90.0
+    """A bar's outer face lies at most at this percentile (%) of its points' heights off the face ..."""
+    handle_outer_noise: float = 1.28
+    """... less this many σ of depth noise (σ: spread of the mount's points about the face seen; 1.28 =
+    the 90 % quantile of a normal): a bar seen mostly from the front has its median point on its outer
+    face, not at its centre."""
+    handle_max_thickness: float = 0.018
+    """A bar's thickness (m, across it and out from the face) and a knob cap's depth, at most this:
+    bars are 10-16 mm; a wider measure is lateral noise and label bleed."""
+    handle_knob_max_length: float = 0.08
+    """A handle shorter than this (m) along the face in every direction is a knob (cap on a stem), else
+    a bar on two posts (bars are 10-35 cm long, knobs 3-5 cm across)."""
+    handle_knob_max_diameter: float = 0.05
+    """A knob cap's diameter (m) at most this."""
+    handle_post_width: float = 0.012
+    """Diameter (m) of a bar's standoff posts and a knob's stem (hidden behind the bar: a typical value)."""
+    handle_post_inset: float = 0.015
+    """A bar's posts stand this far (m) in from its ends."""
+    handle_min_standoff: float = 0.008
+    """The bar's (cap's) inner face must stand at least this far (m) off the face, room for posts (a
+    stem); else the handle keeps its envelope."""
+    handle_min_post: float = 0.002
+    """... and the posts (stem) down to the mount's fitted face at least this long (m): a mount fitted in
+    front of the bar (a noise-thickened front) leaves the handle its envelope."""
+
+
+@dataclass(frozen=True)
+class JointConfig:
+    """Joint type, axis, origin and limits (joints.py); the swept-collision test of the limits."""
+
+    drawer_travel_fraction: float = 0.8
+    """Drawer upper limit = this × the drawer box's depth, estimated as the body's depth along the
+    drawer axis minus ``drawer_back_clearance`` (a closed drawer's box is hidden from the camera)."""
+    drawer_back_clearance: float = 0.025
+    """Back panel plus the gap behind a drawer box (m); also where a drawer's template box ends."""
+    door_max_angle: float = 1.75
+    """A door hinge's stop (rad, 100°; furniture hinges open 95–110°); the swept-collision test
+    stops the door earlier when it would hit its body, a neighbour or a wall."""
+    swing_step: float = 0.035
+    """Angular / travel sampling step (rad or m) of the collision sweep."""
+    sweep_clearance: float = 0.015
+    """The moving part is shrunk by this (m, each side) when swept for collisions."""
+    sweep_min_points: int = 5
+    """A swept pose collides when at least this many foreign scan points fall inside it."""
+    sweep_bleed: float = 0.03
+    """Scan points within this distance (m) of the moving parts at rest are not obstacles: they are
+    the parts' own surface with a neighbour's label (label bleed) or depth noise."""
+    obstacle_spacing: float = 0.02
+    """Other objects' primitives are sampled about this densely (m) as obstacles of the sweeps."""
+
+
+@dataclass(frozen=True)
+class ShapeConfig:
+    """Articulated-template shapes: a drawer's box, a hollow carcass (part_shapes.py)."""
+
+    template_shapes: bool = True
+    """Give drawers their box and bodies with fronts a hollow carcass (else every part is its one
+    fitted primitive)."""
+    carcass_wall: float = 0.018
+    """Panel thickness (m) of a hollow carcass (18 mm particle board)."""
+    front_depth_tolerance: float = 0.04
+    """A drawer/door front opens its carcass face only when its outer face lies at most this deep (m)
+    inside the body's face (an inset front is flush; noise moves it a centimetre or two)."""
+    drawer_wall: float = 0.012
+    """Wall thickness (m) of a drawer box."""
+    drawer_gap: float = 0.005
+    """Clearance (m) between a drawer box and the carcass panels around it."""
+    drawer_box_height: float = 0.7
+    """A drawer box's height as a fraction of the room behind its front."""
+
+
+@dataclass(frozen=True)
+class SceneConfig:
+    """The scene contact graph: support, proximity, upright poses (scene_graph.py)."""
+
+    support_distance: float = 0.05
+    """An object whose bottom is within this (m) of the floor / a top surface is supported by it."""
+    proximal_distance: float = 0.3
+    """Objects whose footprints are closer than this (m) are proximal."""
+    max_upright_tilt: float = 0.2
+    """An object's tilt (rad) below this is corrected to upright by its support refinement."""
+
+
+@dataclass(frozen=True)
+class WallConfig:
+    """Walls of the room from the background points (walls.py)."""
+
+    walls: bool = True
+    """Fit the room's walls to the background points and put them in scene.urdf / graph.json."""
+    wall_floor_margin: float = 0.05
+    """Background points below this height (m) are floor, not wall."""
+    wall_ransac_distance: float = 0.05
+    """RANSAC inlier distance (m) of a wall plane (walls are far from the camera: their depth noise is
+    centimetres; the plane's offset is then the median of its inliers)."""
+    wall_max_planes: int = 8
+    """At most this many RANSAC planes are tried."""
+    wall_min_fraction: float = 0.03
+    """A wall plane needs at least this fraction of the (subsampled) background points ..."""
+    wall_min_points: int = 200
+    """... and at least this many."""
+    wall_max_points: int = 30000
+    """The background is subsampled (seeded) to this many points for RANSAC."""
+    wall_max_tilt: float = 0.1
+    """|n_z| of a wall plane's unit normal at most this (vertical within ~6°)."""
+    wall_min_length: float = 0.5
+    """A wall spans at least this (m) along the floor and up."""
+    wall_merge_distance: float = 0.25
+    """Parallel wall planes closer than this (m) are one wall."""
+    wall_thickness: float = 0.1
+    """Thickness (m) of a wall box, placed behind its plane (outside the room)."""
+
+
+@dataclass(frozen=True)
+class UrdfConfig:
+    """What scene.urdf says beyond the geometry: mass, joint limits and dynamics (scene_urdf.py)."""
+
+    density: float = 600.0
+    """kg/m^3 of every part (particle board); mass = density × the volume of its shapes."""
+    joint_effort: float = 100.0
+    """URDF <limit effort> (N or N·m)."""
+    joint_velocity: float = 1.0
+    """URDF <limit velocity> (m/s or rad/s)."""
+    joint_damping: float = 1.0
+    """URDF <dynamics damping> of movable joints (N·s/m or N·m·s/rad)."""
+    joint_friction: float = 0.1
+    """URDF <dynamics friction> of movable joints (N or N·m)."""
+    collision_clearance: float = 0.003
+    """Movable parts and their children get collision boxes shrunk by this (m, each side), so they
+    do not start in contact with their body or siblings in simulation."""
 
 
 @dataclass(frozen=True)
@@ -60,277 +362,94 @@ class JointUncertaintyConfig:
 
 
 @dataclass(frozen=True)
+class ClearanceConfig:
+    """How the clearance stage (clearance.py) keeps the scene's links apart at q = 0. Lengths in metres."""
+
+    enabled: bool = True
+    """Cut overlapping shapes apart (off only to measure what the stage does)."""
+    moving_gap: float = 0.0
+    """Gap left between shapes that move relative to each other (a door and its carcass). The URDF's
+    collision shapes of moving parts are also shrunk by ``UrdfConfig.collision_clearance``; touching
+    solids therefore start that far apart in an engine."""
+    tolerance: float = 1e-6
+    """Overlaps up to this are left alone (rounding of the written file)."""
+    report_overlap: float = 5e-4
+    """A pair still overlapping by more than this after the stage is reported with a warning."""
+    min_keep_fraction: float = 0.25
+    """A cut never leaves less than this fraction of the shape's extent along the cut axis."""
+    wall_max_shift: float = 0.2
+    """A fitted wall moves back (out of the room) at most this far to clear an object."""
+    max_passes: int = 4
+    """Passes over the overlapping pairs (a cut can only shrink a shape, so few are needed)."""
+    contact_distance: float = 0.005
+    """Links whose shapes come this close at q = 0 are in contact at rest: scene.srdf lists them
+    (``disable_collisions``) for planners that read one (fronts hang 2-3 mm off their carcass)."""
+
+
+@dataclass(frozen=True)
 class ReconConfig:
-    """Thresholds and constants of every stage. Lengths in metres, angles in radians, mass in kg."""
+    """One frozen group per stage (see the module docstring for how to set a field by name)."""
 
-    # --- input validation (scan.py) ---
-    min_part_points: int = 20
-    """A part with fewer points is skipped with a warning naming it (too few to fit a primitive)."""
-    max_scene_extent: float = 60.0
-    """A scan whose bounding box is larger than this (m) is refused: it is almost surely millimetres."""
-
-    outlier_neighbors: int = 16
-    """Statistical outlier removal (flying pixels): neighbours considered per point."""
-    outlier_std_ratio: float = 3.0
-    """... a point is an outlier when its mean neighbour distance exceeds the cloud's mean by this
-    many standard deviations."""
-
-    # --- primitive fitting, Eq. 3 (fitting.py) ---
-    min_thickness: float = 0.01
-    """Smallest box/cylinder extent (m): flat or collinear parts are thickened to this."""
-    upright_tolerance: float = 0.15
-    """Use the yaw-only (gravity-aligned) box when its volume is within (1 + this) of the free 3D one."""
-    surface_samples: int = 600
-    """Points sampled on each candidate primitive's surface, h(M) of Eq. 3."""
-    fit_max_points: int = 3000
-    """Part clouds larger than this are subsampled (seeded) for fitting."""
-    icp_max_distance: float = 0.05
-    """ICP correspondence radius (m)."""
-    icp_iterations: int = 30
-    """ICP iteration cap per candidate."""
-    icp_min_improvement: float = 0.05
-    """ICP's pose is kept only if it lowers the score by this fraction: on noisy scans ICP otherwise
-    trades a few degrees of yaw for a fraction of a millimetre of score."""
-    icp_candidate_ratio: float = 2.0
-    """Only candidates whose unaligned score is within this factor of the best one are ICP-aligned."""
-    noise_floor: float = 0.003
-    """Depth noise (m, robust σ across a box's best-seen face) below which extents are not corrected."""
-    edge_tail_fraction: float = 0.02
-    """Fraction of a box's points at each end of its best-seen axis that decide whether that end is a
-    noise tail (pulled in by the noise correction) or a rim of side faces (kept)."""
-    rim_min_extent: float = 0.3
-    """... and only for boxes this wide (m) along both other axes (table tops, bed frames), not handles."""
-    front_edge_density: float = 0.5
-    """A noisy vertical panel's (door / drawer front's) edges along its face lie where the density of its
-    front-face points along that axis falls to this fraction of the face's central density (the
-    half-maximum of a blurred step). Label bleed (scanner: a neighbour's points within 15 mm take the
-    front's label with probability 0.3) puts a thin band of points beyond the true edge at about a third
-    of the face's density; the 0.2 / 99.8 percentiles kept that band: 46 realistic kitchen doors (seeds
-    0-9) were 7.8 mm too wide at the hinge edge and 9.3 mm at the far edge (medians)."""
-    front_edge_bin_points: int = 20
-    """... the density profile's bins hold this many points at the face's central density (at least
-    ``front_edge_min_bin`` wide): fewer make the edge noisy, more blur it."""
-    front_edge_min_bin: float = 0.006
-    """... smallest bin width (m) of that profile."""
-    front_edge_max_trim: float = 0.03
-    """... an edge moves in from the 0.2 / 99.8 percentile extent by at most this (m): bleed and edge
-    noise reach 15-25 mm; a deeper drop in density is occlusion (a mattress in front of a headboard's
-    lower half), not the panel's edge (bench realistic headboards without the cap: centre 26 cm off)."""
-    front_edge_min_points: int = 150
-    """... a front face with fewer points keeps the percentile extents."""
-    front_thickness: float = 0.018
-    """Thickness (m) of a noisy vertical panel (door / drawer front): its seen face is the median of that
-    face's points and the panel extends this far behind it (18 mm board, as ``carcass_wall``). Realistic
-    depth noise (σ 3-9 mm at 1.5-2 m) hides an 18 mm thickness: the noise-corrected extents came out
-    10-53 mm thick (handle points bleeding in widen the front side) and the back face, where the hinge
-    lies, was off by -45 .. +18 mm (p90 |error| 17.6 mm) on the 46 realistic kitchen doors."""
-    min_face_points: int = 12
-    """The opposite face needs this many points (and a fifth of the best face's) to join a noise estimate."""
-    coverage_distance: float = 0.02
-    """A primitive surface sample is 'seen' when a scan point lies within this distance (m)."""
-    min_face_coverage: float = 0.25
-    """A primitive face with a smaller seen fraction counts as unobserved and is left out of the
-    Eq. 3 score (cameras miss faces against walls, floors and each other)."""
-    point_term_weight: float = 1.0
-    """Weight of the scan-to-primitive mean distance added to the Eq. 3 score, so that leaving
-    unobserved faces out can never reward a primitive that does not explain the points."""
-    small_part_points: int = 400
-    """Parts with fewer points get only candidates aligned with their object's base part (their own
-    bounding box is too noisy to orient them)."""
-    box_preference: float = 0.1
-    """A cylinder or sphere wins only if its score is lower than the best box's by this fraction."""
-    candidates: tuple[str, ...] = ("box", "cylinder_x", "cylinder_y", "cylinder_z", "sphere")
-    """Candidate templates M^c: box, a cylinder along each box axis, sphere."""
-
-    completion_reach: float = 0.3
-    """Legs are extended (completion.py) to a surface above / below them at most this far (m)."""
-
-    # --- handle shapes (handle_shapes.py) ---
-    handle_shapes: bool = True
-    """Write a handle as the shapes a gripper meets (a bar on two posts, a knob's cap on its stem)
-    instead of the one box enveloping it down to its mount."""
-    handle_bleed_margin: float = 0.008
-    """Handle points within this (m) of their mount's face are the front's own surface (label bleed)
-    or its depth noise; they do not measure the bar."""
-    handle_face_window: float = 0.04
-    """The mount's points within this (m) of its fitted face, and within the handle's reach plus this
-    along it, show where the face behind the handle was seen (their median height)."""
-    handle_min_points: int = 15
-    """A handle needs this many points clear of the face for a bar/knob; else it keeps its envelope."""
-    handle_extent_percentile: float = 2.0
-    """A handle's extents along the face come from the [p, 100 - p] percentiles of its points clear of
-    the face (widened by 1 / (1 - 2p/100))."""
-    handle_middle_percentile: float = 10.0
-    """A bar's middle across it is the mean of this and the opposite percentile of its points (bleed and
-    lateral noise spread its edges unevenly; measured on kitchen scans 0-3: mean error 2.7 mm realistic
-    vs 4.0 mm from the extent's percentiles)."""
-    handle_outer_percentile: float = 90.0
-    """A bar's outer face lies at most at this percentile of its points' heights off the face ..."""
-    handle_outer_noise: float = 1.28
-    """... less this many σ of depth noise (σ: spread of the mount's points about the face seen; 1.28 =
-    the 90 % quantile of a normal): a bar seen mostly from the front has its median point on its outer
-    face, not at its centre. Kitchen scans 0-3 against the truth: without the σ share realistic bar
-    centres came out -1 .. +8 mm (too far out), with it -9 .. +7 mm; the planner's 15 mm back-off grasp
-    then still closes on the bar (drawer4 of realistic seed 0: 5 of 5 planning seeds vs 2 of 5)."""
-    handle_max_thickness: float = 0.018
-    """A bar's thickness (m, across it and out from the face) and a knob cap's depth, at most this:
-    bars are 10-16 mm; a wider measure is lateral noise and label bleed."""
-    handle_knob_max_length: float = 0.08
-    """A handle shorter than this (m) along the face in every direction is a knob (cap on a stem), else
-    a bar on two posts (bars are 10-35 cm long, knobs 3-5 cm across)."""
-    handle_knob_max_diameter: float = 0.05
-    """A knob cap's diameter (m) at most this."""
-    handle_post_width: float = 0.012
-    """Diameter (m) of a bar's standoff posts and a knob's stem (hidden behind the bar: a typical value)."""
-    handle_post_inset: float = 0.015
-    """A bar's posts stand this far (m) in from its ends."""
-    handle_min_standoff: float = 0.008
-    """The bar's (cap's) inner face must stand at least this far (m) off the face, room for posts (a
-    stem); else the handle keeps its envelope."""
-    handle_min_post: float = 0.002
-    """... and the posts (stem) down to the mount's fitted face at least this long (m): a mount fitted in
-    front of the bar (a noise-thickened front) leaves the handle its envelope."""
-
-    # --- surface planes and contacts, Eq. 1 (planes.py, contacts.py) ---
-    planes: str = "exact"
-    """Where the planes Π of the contact test come from: "exact" primitive faces or "ransac" planes
-    of the part's points (the paper's way); see planes.py."""
-    ransac_planes: int = 6
-    """At most this many RANSAC planes per part."""
-    ransac_distance: float = 0.01
-    """RANSAC inlier distance (m)."""
-    ransac_min_fraction: float = 0.05
-    """A RANSAC plane needs at least this fraction of the part's points."""
-    cylinder_side_faces: int = 8
-    """A cylinder's side is represented by this many tangent rectangles (planes of Π)."""
-    theta_a: float = 0.97
-    """Align: |n_p · n_c| must reach this (cos 14°); 1 is parallel."""
-    theta_d: float = 0.025
-    """Dist: mean distance (m) from the child polygon's vertices to the parent plane, at most this."""
-    theta_c: float = 0.05
-    """Cont: intersection area / child polygon area, at least this."""
-    foreign_parent_penalty: float = 0.2
-    """Template prior: an edge whose parent label is not one the child's template expects (a handle
-    under a body instead of its drawer) has its contact score multiplied by this in the tree."""
-    near_parent_distance: float = 0.1
-    """A part with no Eq. 1 contact to a parent its template expects is hung from the nearest such
-    part closer than this (m) (noisy scans break contacts by a few centimetres)."""
-    near_parent_weight: float = 0.3
-    """Edge weight of that attachment at zero distance (below the contact scores of real contacts)."""
-    fallback_edge_weight: float = 1e-6
-    """Weight of the root -> part edge given to parts that touch nothing (they are reported)."""
-
-    # --- joints (joints.py) ---
-    density: float = 600.0
-    """kg/m^3 of every part (particle board); mass = density × primitive volume."""
-    drawer_travel_fraction: float = 0.8
-    """Drawer upper limit = this × the drawer box's depth, estimated as the body's depth along the
-    drawer axis minus ``drawer_back_clearance`` (a closed drawer's box is hidden from the camera)."""
-    panel_ratio: float = 0.3
-    """A drawer/door whose thinnest extent is below this fraction of the next one is a front panel:
-    its thin axis tells the opening's normal."""
-    drawer_back_clearance: float = 0.025
-    """Back panel plus the gap behind a drawer box (m)."""
-    door_max_angle: float = 1.75
-    """A door hinge's stop (rad, 100°; furniture hinges open 95–110°); the swept-collision test
-    stops the door earlier when it would hit its body, a neighbour or a wall."""
-    swing_step: float = 0.035
-    """Angular / travel sampling step (rad or m/rad) of the collision sweep."""
-    sweep_clearance: float = 0.015
-    """The moving part is shrunk by this (m, each side) when swept for collisions."""
-    sweep_min_points: int = 5
-    """A swept pose collides when at least this many foreign scan points fall inside it."""
-    sweep_bleed: float = 0.03
-    """Scan points within this distance (m) of the moving parts at rest are not obstacles: they are
-    the parts' own surface with a neighbour's label (label bleed) or depth noise."""
-    obstacle_spacing: float = 0.02
-    """Other objects' primitives are sampled about this densely (m) as obstacles of the sweeps."""
-    joint_effort: float = 100.0
-    """URDF <limit effort> (N or N·m)."""
-    joint_velocity: float = 1.0
-    """URDF <limit velocity> (m/s or rad/s)."""
-    joint_damping: float = 1.0
-    """URDF <dynamics damping> of movable joints (N·s/m or N·m·s/rad)."""
-    joint_friction: float = 0.1
-    """URDF <dynamics friction> of movable joints (N or N·m)."""
-
-    # --- articulated-template shapes (part_shapes.py) ---
-    template_shapes: bool = True
-    """Give drawers their box and bodies with fronts a hollow carcass (else every part is its one
-    fitted primitive)."""
-    carcass_wall: float = 0.018
-    """Panel thickness (m) of a hollow carcass (18 mm particle board)."""
-    front_depth_tolerance: float = 0.04
-    """A drawer/door front opens its carcass face only when its outer face lies at most this deep (m)
-    inside the body's face (an inset front is flush; noise moves it a centimetre or two)."""
-    drawer_wall: float = 0.012
-    """Wall thickness (m) of a drawer box."""
-    drawer_gap: float = 0.005
-    """Clearance (m) between a drawer box and the carcass panels around it."""
-    drawer_box_height: float = 0.7
-    """A drawer box's height as a fraction of the room behind its front."""
-
-    # --- refinement, Alg. 1 (refinement.py) ---
-    refine: bool = True
-    """Run Alg. 1 (off only to measure what it does)."""
-    refine_align: float = 0.9
-    """Plane normals with |cos| above this are paired for the Kabsch rotation (cos 26°)."""
-    refine_max_angle: float = 0.35
-    """A refinement rotation larger than this (rad) is rejected as a bad pairing."""
-    snap_ambiguity: float = 0.05
-    """A child is translated onto its parent's contact plane only if no plane pair along another
-    direction has a contact score within this of the best pair's (else the snap is ambiguous)."""
-    snap_front_panels: bool = False
-    """Translate a front panel (door, drawer front: a child thinner than ``panel_ratio`` of its other
-    extents, parallel to the contact plane) onto its body's face. Off: the panel's seen face (the median
-    of thousands of points) is better measured than the body's front plane, which label bleed from the
-    fronts pushes out (realistic kitchens 0-9: body front 17 mm too far out, median; snapping put the
-    46 doors' hinges 5.7 mm too far out, p90 |depth error| 19 mm)."""
-    collision_clearance: float = 0.003
-    """Movable parts and their children get collision boxes shrunk by this (m, each side), so they
-    do not start in contact with their body or siblings in simulation."""
-
-    # --- scene contact graph (scene_graph.py) ---
-    support_distance: float = 0.05
-    """An object whose bottom is within this (m) of the floor / a top surface is supported by it."""
-    proximal_distance: float = 0.3
-    """Objects whose footprints are closer than this (m) are proximal."""
-    max_upright_tilt: float = 0.2
-    """An object's tilt (rad) below this is corrected to upright by its support refinement."""
-
-    # --- walls from the background (walls.py) ---
-    walls: bool = True
-    """Fit the room's walls to the background points and put them in scene.urdf / graph.json."""
+    scan: ScanConfig = field(default_factory=ScanConfig)
+    leveling: LevelingConfig = field(default_factory=LevelingConfig)
+    fitting: FittingConfig = field(default_factory=FittingConfig)
+    completion: CompletionConfig = field(default_factory=CompletionConfig)
+    contacts: ContactConfig = field(default_factory=ContactConfig)
+    tree: TreeConfig = field(default_factory=TreeConfig)
+    refinement: RefinementConfig = field(default_factory=RefinementConfig)
+    handles: HandleConfig = field(default_factory=HandleConfig)
+    joints: JointConfig = field(default_factory=JointConfig)
+    shapes: ShapeConfig = field(default_factory=ShapeConfig)
+    scene: SceneConfig = field(default_factory=SceneConfig)
+    walls: WallConfig = field(default_factory=WallConfig)
+    urdf: UrdfConfig = field(default_factory=UrdfConfig)
     joint_uncertainty: JointUncertaintyConfig = field(default_factory=JointUncertaintyConfig)
-    """How each movable joint's uncertainty is estimated (written in graph.json)."""
-    wall_floor_margin: float = 0.05
-    """Background points below this height (m) are floor, not wall."""
-    wall_ransac_distance: float = 0.05
-    """RANSAC inlier distance (m) of a wall plane (walls are far from the camera: their depth noise is
-    centimetres; the plane's offset is then the median of its inliers)."""
-    wall_max_planes: int = 8
-    """At most this many RANSAC planes are tried."""
-    wall_min_fraction: float = 0.03
-    """A wall plane needs at least this fraction of the (subsampled) background points ..."""
-    wall_min_points: int = 200
-    """... and at least this many."""
-    wall_max_points: int = 30000
-    """The background is subsampled (seeded) to this many points for RANSAC."""
-    wall_max_tilt: float = 0.1
-    """|n_z| of a wall plane's unit normal at most this (vertical within ~6°)."""
-    wall_min_length: float = 0.5
-    """A wall spans at least this (m) along the floor and up."""
-    wall_merge_distance: float = 0.25
-    """Parallel wall planes closer than this (m) are one wall."""
-    wall_thickness: float = 0.1
-    """Thickness (m) of a wall box, placed behind its plane (outside the room)."""
-
-    # --- floor levelling (leveling.py) ---
-    floor_ransac_distance: float = 0.02
-    """RANSAC inlier distance (m) of the floor plane."""
-    floor_candidates: int = 4
-    """Largest planes tried as the floor."""
-
-    # --- clearance between links at q = 0 (clearance.py) ---
     clearance: ClearanceConfig = field(default_factory=ClearanceConfig)
-    """The clearance stage's own group."""
+
+    def flat(self) -> dict:
+        """{field name: value} over every group, except that the groups of ``NESTED`` stay one
+        {group name: {field: value}} entry each (the ``config`` of graph.json)."""
+        out = {f.name: getattr(getattr(self, g), f.name) for g, f in _FIELDS if g not in NESTED}
+        out.update({g: dataclasses.asdict(getattr(self, g)) for g in NESTED})
+        return out
+
+    def replace(self, **fields) -> "ReconConfig":
+        """A copy with the named fields (of any groups) set; a group's name sets the whole group (a
+        group object or a {field: value} mapping). An unknown name raises TypeError."""
+        unknown = sorted(set(fields) - set(_GROUP_OF) - set(_GROUPS))
+        if unknown:
+            raise TypeError(f"ReconConfig has no field {', '.join(map(repr, unknown))}")
+        whole = {g: v if not isinstance(v, Mapping) else _GROUPS[g](**v)
+                 for g, v in fields.items() if _is_group(g, v)}
+        groups: dict[str, dict] = {}
+        for name, value in fields.items():
+            if not _is_group(name, value):
+                groups.setdefault(_GROUP_OF[name], {})[name] = value
+        out = dataclasses.replace(self, **whole)
+        return dataclasses.replace(out, **{g: dataclasses.replace(getattr(out, g), **kw) for g, kw in groups.items()})
+
+    @classmethod
+    def from_flat(cls, fields: Mapping, *, ignore_unknown: bool = False) -> "ReconConfig":
+        """The config with ``fields`` (as :meth:`flat` writes them) set over the defaults (lists become
+        tuples); unknown names raise TypeError unless ``ignore_unknown``."""
+        known = set(_GROUP_OF) | set(_GROUPS)
+        kw = {k: v for k, v in fields.items() if not ignore_unknown or k in known}
+        kw = {k: tuple(v) if isinstance(v, list) else v for k, v in kw.items()}
+        return cls().replace(**kw)
+
+
+NESTED = ("joint_uncertainty", "clearance")
+"""Groups written nested in graph.json (their field names are generic: ``samples``, ``enabled``)."""
+_GROUPS = {g.name: g.default_factory for g in dataclasses.fields(ReconConfig)}
+"""{group name: its dataclass}."""
+_FIELDS = tuple((g, f) for g, cls in _GROUPS.items() for f in dataclasses.fields(cls))
+"""(group name, dataclasses.Field) of every field, in declaration order."""
+_GROUP_OF = {f.name: g for g, f in _FIELDS}
+"""{field name: its group's name in ReconConfig}."""
+assert len(_GROUP_OF) == len(_FIELDS), "a ReconConfig field name is used in two groups"
+
+
+def _is_group(name: str, value) -> bool:
+    """Whether ``name=value`` in :meth:`ReconConfig.replace` sets a whole group (``walls`` is both a
+    group and its on/off field: a WallConfig or a mapping sets the group, a bool the field)."""
+    return name in _GROUPS and (name not in _GROUP_OF or isinstance(value, (_GROUPS[name], Mapping)))

@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from recon.config import ReconConfig
+from recon.config import ContactConfig
 from recon.model import ContactEdge
 from recon.primitive import SurfacePlane
 
@@ -33,7 +33,7 @@ def plane_basis(normal: np.ndarray) -> np.ndarray:
 
 
 def contact_pairs(parent_planes: tuple[SurfacePlane, ...], child_planes: tuple[SurfacePlane, ...],
-                  config: ReconConfig) -> list[tuple[int, int, float, float, float]]:
+                  config: ContactConfig) -> list[tuple[int, int, float, float, float]]:
     """Every plane pair satisfying Eq. 1: [(parent plane i, child plane j, Cont, Align, Dist), ...]."""
     if not parent_planes or not child_planes:
         return []
@@ -61,7 +61,7 @@ def contact_pairs(parent_planes: tuple[SurfacePlane, ...], child_planes: tuple[S
 
 
 def contact_edge(parent_id: int, parent_planes: tuple[SurfacePlane, ...], child_id: int,
-                 child_planes: tuple[SurfacePlane, ...], config: ReconConfig) -> ContactEdge | None:
+                 child_planes: tuple[SurfacePlane, ...], config: ContactConfig) -> ContactEdge | None:
     """The directed contact parent -> child of Eq. 1 (best pair: max Cont, then min Dist), or None
     when no plane pair satisfies it (an ordinary outcome while building the graph, not a failure)."""
     pairs = contact_pairs(parent_planes, child_planes, config)
@@ -77,7 +77,7 @@ def _bounds(planes: tuple[SurfacePlane, ...]) -> np.ndarray:
 
 
 def contact_edges(planes_by_part: dict[int, tuple[SurfacePlane, ...]],
-                  config: ReconConfig) -> tuple[ContactEdge, ...]:
+                  config: ContactConfig) -> tuple[ContactEdge, ...]:
     """Every directed edge p -> c (p != c) satisfying Eq. 1 among the parts of one object.
 
     ``planes_by_part`` : {part_id: its planes Π}. Pairs whose bounding boxes are farther apart than

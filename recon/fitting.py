@@ -9,7 +9,7 @@ underside of a table top, the inside of a leg pair are missing, and Eq. 3 then c
 primitive for faces that are really there. We therefore (a) leave out the primitive's faces whose
 samples are mostly farther than ``coverage_distance`` from any point (unobserved faces) and (b) add
 the mean distance from the points to the primitive's surface, so that dropping faces can never make a
-wrong primitive look good. ``bench/recon_fit_score.py`` (if present) measures both scores.
+wrong primitive look good.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from recon.bounding import oriented_box
-from recon.config import ReconConfig
+from recon.config import FittingConfig
 from recon.primitive import Primitive, PrimitiveKind
 
 __all__ = ["FitScore", "candidate_primitives", "score_primitive", "denoised_box", "dominant_yaw", "fit_part"]
@@ -78,7 +78,7 @@ def _yaw_frame(yaw: float) -> np.ndarray:
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def candidate_primitives(points: np.ndarray, config: ReconConfig,
+def candidate_primitives(points: np.ndarray, config: FittingConfig,
                          R_world_ref: np.ndarray | None = None,
                          normals: np.ndarray | None = None) -> dict[str, Primitive]:
     """Candidate primitives scaled from the minimum-volume oriented box of ``points`` (n, 3).
@@ -124,7 +124,7 @@ def _templates(points, T, ext, config) -> dict[str, Primitive]:
             d = float(np.mean(ext))
             out[name] = Primitive(PrimitiveKind.SPHERE, [d, d, d], T)
         else:
-            raise ValueError(f"unknown primitive candidate {name!r} in ReconConfig.candidates")
+            raise ValueError(f"unknown primitive candidate {name!r} in FittingConfig.candidates")
     return out
 
 
@@ -141,7 +141,7 @@ def _circle_fit(q: np.ndarray) -> tuple[np.ndarray, float] | None:
     return sol[:2], float(np.sqrt(r2))
 
 
-def score_primitive(prim: Primitive, points: np.ndarray, tree: cKDTree, config: ReconConfig,
+def score_primitive(prim: Primitive, points: np.ndarray, tree: cKDTree, config: FittingConfig,
                     rng: np.random.Generator) -> FitScore:
     """Score ``prim`` against ``points`` (n, 3) whose KD-tree is ``tree`` (see the module docstring)."""
     samples, face = prim.sample_surface(config.surface_samples, rng)
@@ -163,13 +163,13 @@ def _mad_sigma(r: np.ndarray) -> float:
     return 1.4826 * float(np.median(np.abs(r - np.median(r)))) if len(r) else 0.0
 
 
-def denoised_box(prim: Primitive, points: np.ndarray, config: ReconConfig,
+def denoised_box(prim: Primitive, points: np.ndarray, config: FittingConfig,
                  normals: np.ndarray | None = None) -> Primitive:
     """The box with its extents corrected for depth noise (see :func:`_denoised`)."""
     return _denoised(prim, points, config, normals)[0]
 
 
-def _denoised(prim: Primitive, points: np.ndarray, config: ReconConfig,
+def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
               normals: np.ndarray | None = None) -> tuple[Primitive, bool]:
     """The box with its extents corrected for depth noise.
 
@@ -184,8 +184,7 @@ def _denoised(prim: Primitive, points: np.ndarray, config: ReconConfig,
     normals : (n, 3) unit, world, optional. An end of that axis whose outermost points
     (``edge_tail_fraction``) mostly face sideways (|n · axis| < 0.5) is the rim of side faces the
     camera saw edge-on — a table top's underside is hidden, its lowest points are its edges — not a
-    noise tail of the seen face, so it is not pulled in (measured: a 27 mm realistic table top came
-    out 15 mm thick when both ends were pulled). Only for boxes at least ``rim_min_extent`` across the
+    noise tail of the seen face, so it is not pulled in. Only for boxes at least ``rim_min_extent`` across the
     axis: the front of a 12 mm handle bar is no rim, its noise is.
 
     A front — a vertical panel (thinner than ``panel_ratio`` × its other extents) whose face points'
@@ -193,8 +192,7 @@ def _denoised(prim: Primitive, points: np.ndarray, config: ReconConfig,
     is measured from the points of its face (normals along its thin axis): its in-plane edges where
     their density falls to ``front_edge_density`` of the face's (label bleed and the edges' own noise
     lie beyond), its seen face at their median, and a ``front_thickness`` board behind it. A front on
-    a clean scan thinner than that board (only its face was seen) gets the board behind its face
-    (measured: clean refrigerator doors came out 10 mm thick, their hinge 9-10 mm too far out).
+    a clean scan thinner than that board (only its face was seen) gets the board behind its face.
 
     Returns (box, whether the front rule placed it).
     """
@@ -277,20 +275,18 @@ def _board_behind(lo: np.ndarray, hi: np.ndarray, k: int, seen: float, side: boo
     lo[k], hi[k] = (seen - thickness, seen) if side else (seen, seen + thickness)
 
 
-def _vertical_panel(lo: np.ndarray, hi: np.ndarray, k: int, axis_k: np.ndarray, config: ReconConfig) -> bool:
+def _vertical_panel(lo: np.ndarray, hi: np.ndarray, k: int, axis_k: np.ndarray, config: FittingConfig) -> bool:
     """Is the box [lo, hi] (part frame, (3,) each) a vertical panel seen across its thin axis ``k``
     (world direction ``axis_k`` (3,), horizontal): thinner than ``panel_ratio`` × its other extents?"""
     size = hi - lo
     return bool(abs(axis_k[2]) < 0.5 and size[k] < config.panel_ratio * min(size[a] for a in range(3) if a != k))
 
 
-def _facing(normals: np.ndarray | None, mask: np.ndarray, axis_k: np.ndarray, config: ReconConfig) -> np.ndarray:
+def _facing(normals: np.ndarray | None, mask: np.ndarray, axis_k: np.ndarray, config: FittingConfig) -> np.ndarray:
     """(n,) bool: the points whose ``normals`` (n, 3) lie along ``axis_k`` (3,) (|cos| > 0.5), i.e. the
-    panel's face, not its edges: an edge seen from the side has its depth noise across the face's edge
-    (measured on a realistic refrigerator door: edge points spread 14 mm past the edge and outnumber the
-    face's points there). By normals, not by the nearest face of the noise-inflated box, which gives
-    the face's points near its edges to the side faces (the face came out 8-12 mm too narrow on a
-    synthetic door). ``mask`` (the points nearest the seen face) without normals or with fewer than
+    panel's face, not its edges: an edge seen from the side has its depth noise across the face's edge.
+    By normals, not by the nearest face of the noise-inflated box, which gives the face's points near
+    its edges to the side faces. ``mask`` (the points nearest the seen face) without normals or with fewer than
     ``front_edge_min_points`` such points."""
     if normals is None or len(normals) != len(mask):
         return mask
@@ -309,7 +305,7 @@ def _seen_side(normals: np.ndarray | None, mask: np.ndarray, axis_k: np.ndarray)
     return (m > 0) if abs(m) > 0.5 else None
 
 
-def _half_density_edges(x: np.ndarray, config: ReconConfig) -> tuple[float, float] | None:
+def _half_density_edges(x: np.ndarray, config: FittingConfig) -> tuple[float, float] | None:
     """(low, high) edges of the coordinates ``x`` (n,) of a face's points along one in-plane axis: where
     the density of points, from each end inwards, first reaches ``front_edge_density`` × the density of
     the central half (linear between bin centres). None with too few points or a degenerate spread."""
@@ -343,7 +339,7 @@ def _half_density_edges(x: np.ndarray, config: ReconConfig) -> tuple[float, floa
 
 
 def _rim_ends(x: np.ndarray, normals: np.ndarray | None, axis: np.ndarray,
-              config: ReconConfig) -> tuple[bool, bool]:
+              config: FittingConfig) -> tuple[bool, bool]:
     """(low end, high end) of the coordinates ``x`` (n,) along ``axis`` (3,) world: is that end made of
     points whose normals (n, 3) mostly lie across the axis (side faces seen edge-on)? (False, False)
     without normals."""
@@ -356,7 +352,7 @@ def _rim_ends(x: np.ndarray, normals: np.ndarray | None, axis: np.ndarray,
 
 
 def _icp_refined(prim: Primitive, score: FitScore, points: np.ndarray, normals: np.ndarray,
-                 config: ReconConfig, rng: np.random.Generator) -> Primitive:
+                 config: FittingConfig, rng: np.random.Generator) -> Primitive:
     from recon.open3d_engine import icp_point_to_plane
 
     samples, face = prim.sample_surface(config.surface_samples, rng)
@@ -368,7 +364,7 @@ def _icp_refined(prim: Primitive, score: FitScore, points: np.ndarray, normals: 
     return prim.transformed(T)
 
 
-def fit_part(points: np.ndarray, config: ReconConfig = ReconConfig(), *, seed: int = 0,
+def fit_part(points: np.ndarray, config: FittingConfig, *, seed: int = 0,
              normals: np.ndarray | None = None, R_world_ref: np.ndarray | None = None
              ) -> tuple[str, Primitive, FitScore, dict[str, float]]:
     """Eq. 3 for one part: ``points`` (n, 3) world -> (winner name, primitive, its score, {name: total}).

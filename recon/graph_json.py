@@ -2,7 +2,7 @@
 
 Layout (format ``partscene.graph/1``; lengths in metres, angles in radians, world frame)::
 
-    {"format": "partscene.graph/1", "seed": 0, "config": {...ReconConfig...},
+    {"format": "partscene.graph/1", "seed": 0, "config": {ReconConfig field: value},
      "objects": [{"id", "category", "name", "T_world_object", "size", "supported_by", "proximal",
                   "root_part_id", "isolated_part_ids",
                   "parts": [{"part_id", "label", "link", "type", "size", "T_world_part", "score",
@@ -33,7 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
-from recon.config import ClearanceConfig, JointUncertaintyConfig, ReconConfig
+from recon.config import ReconConfig
 from recon.errors import ScanError
 from recon.model import (ContactEdge, JointEstimate, JointUncertainty, ObjectReconstruction, PartFit,
                          Reconstruction, SceneGraph)
@@ -82,7 +82,7 @@ def graph_dict(rec: Reconstruction) -> dict:
             "contacts": [dataclasses.asdict(e) for e in o.contacts],
         })
     return {
-        "format": FORMAT, "seed": rec.seed, "config": dataclasses.asdict(rec.config),
+        "format": FORMAT, "seed": rec.seed, "config": rec.config.flat(),
         "objects": objects,
         "supports": [[a, b] for a, b in rec.graph.supports],
         "proximal": [[a, b] for a, b in rec.graph.proximal],
@@ -101,15 +101,7 @@ def reconstruction_from_dict(doc: dict, source: str = "<dict>") -> Reconstructio
     if not isinstance(doc, dict) or doc.get("format") != FORMAT:
         raise ScanError(f"{source}: not a {FORMAT} document (format={doc.get('format') if isinstance(doc, dict) else None!r})")
     try:
-        fields = {f.name for f in dataclasses.fields(ReconConfig)}
-        cfg = {k: v for k, v in doc.get("config", {}).items() if k in fields}
-        if "candidates" in cfg:
-            cfg["candidates"] = tuple(cfg["candidates"])
-        if isinstance(cfg.get("clearance"), dict):
-            cfg["clearance"] = ClearanceConfig(**cfg["clearance"])
-        if isinstance(cfg.get("joint_uncertainty"), dict):
-            cfg["joint_uncertainty"] = JointUncertaintyConfig(**cfg["joint_uncertainty"])
-        config = ReconConfig(**cfg)
+        config = ReconConfig.from_flat(doc.get("config", {}), ignore_unknown=True)
         objects = []
         for o in doc["objects"]:
             parts = tuple(PartFit(

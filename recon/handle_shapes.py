@@ -15,9 +15,7 @@ of (:func:`facing_plane`), after refinement. Measured along that face's outward 
   are dropped: the front's own surface labelled handle (label bleed) or its depth noise;
 - the bar's centre height is the **median** ``x`` of the points left, but at most half a bar below the
   outer face, the ``handle_outer_percentile`` height less ``handle_outer_noise`` σ: posts and bleed
-  pull the median in, a bar seen mostly from the front has its median on its outer face. Measured on
-  the 33 clean / 41 realistic handles of kitchen scans 0-3 against the truth: the median alone
-  -4.5 .. +5.3 mm clean, +0.4 .. +8.1 mm realistic; capped, clean bars within 1.5 mm;
+  pull the median in, a bar seen mostly from the front has its median on its outer face;
 - extents along the face from the ``[p, 100 - p]`` percentiles (``handle_extent_percentile``), widened
   by ``1 / (1 - 2p/100)`` (exact for points spread evenly); the middle across the bar from the
   ``handle_middle_percentile`` pair (bleed spreads its edges unevenly);
@@ -43,7 +41,7 @@ import numpy as np
 import shapely
 
 from recon.completion import MOUNTED_LABELS, mount_face
-from recon.config import ReconConfig
+from recon.config import CompletionConfig, ContactConfig, FittingConfig, HandleConfig
 from recon.primitive import Primitive, PrimitiveKind, SurfacePlane
 
 __all__ = ["HandleStyle", "HandleShapes", "handle_shapes", "facing_plane", "mounted_handle_shapes",
@@ -108,7 +106,7 @@ def _posed(kind: PrimitiveKind, size, R: np.ndarray, centre: np.ndarray) -> Prim
 
 
 def _seen_face(mount_points: np.ndarray | None, n: np.ndarray, d: float, centre: np.ndarray,
-               radius: float, config: ReconConfig) -> tuple[float, float, int]:
+               radius: float, config: HandleConfig) -> tuple[float, float, int]:
     """(height (m) above the plane ``n·p + d = 0`` where the camera saw the mount's face around the
     handle, depth noise σ (m) there, number of mount points they rest on): the median and the robust
     spread (1.4826 × MAD) of the heights of the mount's points (k, 3) within ``radius`` (m) of
@@ -130,7 +128,7 @@ def _seen_face(mount_points: np.ndarray | None, n: np.ndarray, d: float, centre:
 
 
 def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
-                  config: ReconConfig = ReconConfig(), mount_points: np.ndarray | None = None) -> HandleShapes:
+                  config: HandleConfig, fitting: FittingConfig, mount_points: np.ndarray | None = None) -> HandleShapes:
     """A handle's bar and posts (or knob's cap and stem) measured from its ``points`` (k, 3) world.
 
     envelope : the handle's fitted primitive (its axes give the in-face directions)
@@ -164,10 +162,10 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
     mv = float(np.mean(np.percentile(q @ v, [mid_pct, 100.0 - mid_pct])))
     knob = length < config.handle_knob_max_length
     if knob:
-        across = float(np.clip((length + width) / 2.0, config.min_thickness, config.handle_knob_max_diameter))
+        across = float(np.clip((length + width) / 2.0, fitting.min_thickness, config.handle_knob_max_diameter))
         depth = min(across, config.handle_max_thickness)
     else:
-        across = float(np.clip(width, config.min_thickness, config.handle_max_thickness))
+        across = float(np.clip(width, fitting.min_thickness, config.handle_max_thickness))
         depth = across
     xc = min(xc, outer - depth / 2.0)                  # a bar seen mostly from the front: its face is the median
     inner, base = xc - depth / 2.0, -seen              # base: the mount face the posts reach
@@ -200,14 +198,15 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
     return HandleShapes(style, reason, env, shapes)
 
 
-def facing_plane(mount: Primitive, points: np.ndarray, config: ReconConfig) -> SurfacePlane | None:
+def facing_plane(mount: Primitive, points: np.ndarray, config: HandleConfig, contacts: ContactConfig
+                 ) -> SurfacePlane | None:
     """The face of ``mount`` a handle's ``points`` (k, 3) world stand in front of: of the faces whose
     outline, grown by ``handle_face_window`` (a fitted door may come out a little narrower than the
     handle near its edge), holds the points' median (projected onto the face), the one it stands highest
     above; None when it stands above none of them."""
     centre = np.median(np.asarray(points, float).reshape(-1, 3), axis=0)
     best = None
-    for pl in mount.planes(config.cylinder_side_faces):
+    for pl in mount.planes(contacts.cylinder_side_faces):
         h = float(centre @ pl.normal + pl.d)
         if h <= 0 or (best is not None and h <= best[0]):
             continue
@@ -218,7 +217,8 @@ def facing_plane(mount: Primitive, points: np.ndarray, config: ReconConfig) -> S
 
 
 def mounted_handle_shapes(prims: dict[int, Primitive], labels: dict[int, str], points: dict[int, np.ndarray],
-                          config: ReconConfig, where: str = "", parents: dict[int, int] | None = None
+                          config: HandleConfig, contacts: ContactConfig, fitting: FittingConfig,
+                          completion: CompletionConfig, where: str = "", parents: dict[int, int] | None = None
                           ) -> tuple[dict[int, Primitive], dict[int, HandleShapes]]:
     """Every handle/knob of an object as its bar and posts (knob cap and stem).
 
@@ -238,15 +238,15 @@ def mounted_handle_shapes(prims: dict[int, Primitive], labels: dict[int, str], p
             continue
         if parents is not None:
             j = parents.get(i)
-            face = None if j not in prims else facing_plane(prims[j], points[i], config)
+            face = None if j not in prims else facing_plane(prims[j], points[i], config, contacts)
         else:
-            found = mount_face(i, prims, labels, config)
+            found = mount_face(i, prims, labels, completion, contacts)
             j, face = (None, None) if found is None else found[:2]
         if face is None:
             log.info("%s part %d (%s): no mount face found (mount part %s); kept as one %s", where, i, labels[i],
                      j, prim.kind.value)
             continue
-        hs = handle_shapes(points[i], prim, face, config, points.get(j))
+        hs = handle_shapes(points[i], prim, face, config, fitting, points.get(j))
         if hs.style is HandleStyle.ENVELOPE:
             log.info("%s part %d (%s): kept as one %s: %s", where, i, labels[i], prim.kind.value, hs.reason)
             continue

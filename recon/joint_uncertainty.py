@@ -32,7 +32,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from recon.config import JointUncertaintyConfig, ReconConfig
+from recon.config import FittingConfig, ReconConfig
 from recon.fitting import denoised_box, dominant_yaw
 from recon.joints import movable_joint
 from recon.model import JointEstimate, JointType, JointUncertainty
@@ -61,6 +61,8 @@ def with_joint_uncertainty(joints: tuple[JointEstimate, ...], parts, prims: dict
     parts : the object's :class:`recon.scan.PartPoints` (part_id, points, normals)
     prims : {part_id: final primitive}; obstacles_for(part_ids) -> (n, 3) points the moving parts
     must not sweep into (as for :func:`recon.joints.estimate_joints`).
+    config : the whole config: each replicate re-runs the end of Eq. 3 fitting (``fitting``) and the
+    joint stage (``joints``, ``contacts``); the bootstrap's own group is ``joint_uncertainty``.
     Deterministic for a given ``seed``. ``config.joint_uncertainty.samples == 0`` returns ``joints``.
     """
     ucfg = config.joint_uncertainty
@@ -127,7 +129,7 @@ def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, han
     if jtype is JointType.PRISMATIC:
         prior = ucfg.drawer_travel_prior
     else:
-        prior = ucfg.door_stop_prior if ref[2] >= config.door_max_angle - 1e-9 else 0.0
+        prior = ucfg.door_stop_prior if ref[2] >= config.joints.door_max_angle - 1e-9 else 0.0
     return JointUncertainty(rms(ang), rms(off), float(np.hypot(upper, prior)), int(ucfg.samples), METHOD)
 
 
@@ -154,15 +156,16 @@ def _replicate(jtype, par: _PartData, chi: _PartData, ip, ic, handles, others, o
                config: ReconConfig, sweep: bool) -> tuple[np.ndarray, np.ndarray, float]:
     """(axis, origin, upper) re-estimated from the points indexed by ``ip`` / ``ic`` (None = all);
     upper is NaN unless ``sweep`` (the limit's collision sweep is the costly part)."""
-    p_box = _refit(par, ip, config)
-    c_box = _refit(chi, ic, config)
+    p_box = _refit(par, ip, config.fitting)
+    c_box = _refit(chi, ic, config.fitting)
     axis, origin, upper = movable_joint(jtype, p_box, c_box, handles, [c_box, *others],
-                                        obstacles if sweep else None, config)
-    R = _plane_tilt(chi, ic, config)
+                                        obstacles if sweep else None, config.joints, config.contacts,
+                                        config.fitting)
+    R = _plane_tilt(chi, ic, config.fitting)
     return R @ axis, origin, float(upper)
 
 
-def _refit(part: _PartData, idx, config: ReconConfig) -> Primitive:
+def _refit(part: _PartData, idx, config: FittingConfig) -> Primitive:
     """The part's box refitted to its (resampled) points, its frame turned by the change in the normals'
     dominant yaw. On a noisy scan, the depth-noise / front correction of the fitted box (the last step
     of Eq. 3 fitting) re-run on these points; on a clean one (the correction keeps the box), the
@@ -190,7 +193,7 @@ def _refit(part: _PartData, idx, config: ReconConfig) -> Primitive:
                         nrm)
 
 
-def _plane_tilt(part: _PartData, idx, config: ReconConfig) -> np.ndarray:
+def _plane_tilt(part: _PartData, idx, config: FittingConfig) -> np.ndarray:
     """(3, 3) the smallest rotation from a panel's face normal (smallest principal direction of all its
     points) to that of the resampled points; identity for a non-panel part or ``idx`` None."""
     size = np.sort(part.prim.size)

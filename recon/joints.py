@@ -21,7 +21,7 @@ import logging
 
 import numpy as np
 
-from recon.config import ReconConfig
+from recon.config import ContactConfig, FittingConfig, JointConfig
 from recon.model import JointEstimate, JointType
 from recon.part_tree import PartTree
 from recon.primitive import Primitive
@@ -36,23 +36,23 @@ _UP = np.array([0.0, 0.0, 1.0])
 
 
 def opening_face(parent: Primitive, child: Primitive, handles: list[Primitive],
-                 config: ReconConfig) -> tuple[np.ndarray, float]:
+                 contacts: ContactConfig, fitting: FittingConfig) -> tuple[np.ndarray, float]:
     """The parent's face a drawer/door sits in: (outward unit normal (3,), d) of that plane.
 
     Among the parent's faces with a horizontal normal: those its handles stand outside of (when it has
     handles); then, for a panel-like child (a closed drawer or a door is seen as its front panel), the
     face most parallel to the panel; then the face the child reaches most closely.
     """
-    planes = parent.planes(config.cylinder_side_faces)
+    planes = parent.planes(contacts.cylinder_side_faces)
     side = [p for p in planes if abs(p.normal[2]) < 0.5] or list(planes)
     corners = child.corners()
     ext = np.sort(child.size)
     R = child.T_world_part[:3, :3]
-    thin = R[:, int(np.argmin(child.size))] if ext[0] < config.panel_ratio * ext[1] else None
+    thin = R[:, int(np.argmin(child.size))] if ext[0] < fitting.panel_ratio * ext[1] else None
     cand = []
     for pl in side:
         gap = float(np.max(corners @ pl.normal + pl.d))            # child's outermost reach past the plane
-        outside = all(float(h.center @ pl.normal + pl.d) > -config.theta_d for h in handles)
+        outside = all(float(h.center @ pl.normal + pl.d) > -contacts.theta_d for h in handles)
         skew = 0.0 if thin is None else round(1.0 - abs(float(pl.normal @ thin)), 2)
         cand.append((0 if outside else 1, skew, abs(gap), pl))
     cand.sort(key=lambda t: t[:3])
@@ -65,8 +65,8 @@ def _extent(prim: Primitive, direction: np.ndarray) -> tuple[float, float]:
     return float(s.min()), float(s.max())
 
 
-def hinge(parent: Primitive, door: Primitive, handles: list[Primitive], normal: np.ndarray,
-          config: ReconConfig) -> tuple[np.ndarray, np.ndarray, str]:
+def hinge(parent: Primitive, door: Primitive, handles: list[Primitive], normal: np.ndarray
+          ) -> tuple[np.ndarray, np.ndarray, str]:
     """(axis (3,), origin (3,), description) of a door's hinge; ``normal`` = the opening's outward normal."""
     v = _UP - (_UP @ normal) * normal
     v = v / np.linalg.norm(v) if np.linalg.norm(v) > 1e-6 else np.cross(normal, [1.0, 0.0, 0.0])
@@ -102,7 +102,7 @@ def hinge(parent: Primitive, door: Primitive, handles: list[Primitive], normal: 
 
 
 def sweep_limit(moving: list[Primitive], motion, values: np.ndarray, obstacles: np.ndarray,
-                config: ReconConfig, reach: float) -> float:
+                config: JointConfig, reach: float) -> float:
     """The largest of ``values`` (increasing) reachable before the moving primitives — shrunk by
     ``sweep_clearance`` and moved by ``motion(value) -> (4, 4)`` — contain ``sweep_min_points`` of
     ``obstacles`` (n, 3). ``reach`` (m) bounds how far any moving point travels (to crop obstacles).
@@ -145,7 +145,7 @@ def _translation(axis: np.ndarray, s: float) -> np.ndarray:
     return M
 
 
-def _drawer_travel(parent: Primitive, axis: np.ndarray, config: ReconConfig) -> float:
+def _drawer_travel(parent: Primitive, axis: np.ndarray, config: JointConfig) -> float:
     """A drawer's travel (m) before collisions: ``drawer_travel_fraction`` of the parent's depth along
     ``axis`` (3,) less ``drawer_back_clearance``."""
     lo, hi = _extent(parent, axis)
@@ -153,8 +153,8 @@ def _drawer_travel(parent: Primitive, axis: np.ndarray, config: ReconConfig) -> 
 
 
 def movable_joint(jtype: JointType, parent: Primitive, child: Primitive, handles: list[Primitive],
-                  moving: list[Primitive], obstacles: np.ndarray, config: ReconConfig
-                  ) -> tuple[np.ndarray, np.ndarray, float]:
+                  moving: list[Primitive], obstacles: np.ndarray, config: JointConfig,
+                  contacts: ContactConfig, fitting: FittingConfig) -> tuple[np.ndarray, np.ndarray, float]:
     """(axis (3,), origin (3,), upper) of a drawer's (PRISMATIC) or door's (REVOLUTE) joint, world frame.
 
     parent, child : the fitted primitives; handles : the child's handles; moving : every primitive of
@@ -162,7 +162,7 @@ def movable_joint(jtype: JointType, parent: Primitive, child: Primitive, handles
     None to skip the sweep (upper is then NaN).
     upper : metres or radians (0 when the first step already collides).
     """
-    normal, _ = opening_face(parent, child, handles, config)
+    normal, _ = opening_face(parent, child, handles, contacts, fitting)
     if jtype is JointType.PRISMATIC:
         travel = _drawer_travel(parent, normal, config)
         if obstacles is None:
@@ -171,7 +171,7 @@ def movable_joint(jtype: JointType, parent: Primitive, child: Primitive, handles
         steps = np.append(np.arange(step, travel, step), travel) if travel > 0 else np.zeros(1)
         reach = sweep_limit(moving, lambda s: _translation(normal, s), steps, obstacles, config, reach=travel)
         return normal, child.center, (reach if reach < travel - 1e-9 else travel)
-    axis, origin, desc = hinge(parent, child, handles, normal, config)
+    axis, origin, desc = hinge(parent, child, handles, normal)
     log.debug("hinge %s", desc)
     if obstacles is None:
         return axis, origin, float("nan")
@@ -184,8 +184,8 @@ def movable_joint(jtype: JointType, parent: Primitive, child: Primitive, handles
 
 
 def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str],
-                    prims: dict[int, Primitive], tree: PartTree, obstacles_for, config: ReconConfig,
-                    warn) -> tuple[JointEstimate, ...]:
+                    prims: dict[int, Primitive], tree: PartTree, obstacles_for, config: JointConfig,
+                    contacts: ContactConfig, fitting: FittingConfig, warn) -> tuple[JointEstimate, ...]:
     """One joint per part of an object: the root's fixed joint to the world, then the tree's.
 
     names : {part_id: URDF joint name}; labels : {part_id: label}; prims : refined primitives
@@ -212,7 +212,7 @@ def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str]
             continue
         sub = tree.subtree(c)
         axis, origin, upper = movable_joint(jtype, prims[p], prims[c], hprims, [prims[k] for k in sub],
-                                            obstacles_for(sub), config)
+                                            obstacles_for(sub), config, contacts, fitting)
         if jtype is JointType.PRISMATIC and upper < _drawer_travel(prims[p], axis, config):
             warn(f"{names[c]}: drawer travel limited to {upper:.3f} m (of "
                  f"{_drawer_travel(prims[p], axis, config):.3f} m) by scan points in its way")

@@ -11,14 +11,14 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from recon.config import ReconConfig
+from recon.config import LevelingConfig, SceneConfig
 from recon.errors import ScanError
 from recon.scan import Scan
 
 __all__ = ["floor_transform"]
 
 
-def floor_transform(scan: Scan, config: ReconConfig, seed: int = 0) -> tuple[np.ndarray, float]:
+def floor_transform(scan: Scan, config: LevelingConfig, scene: SceneConfig, seed: int = 0) -> tuple[np.ndarray, float]:
     """(T_level_scan (4, 4), tilt of the original up direction from the floor normal in radians)."""
     from recon.open3d_engine import segment_planes
 
@@ -40,7 +40,7 @@ def floor_transform(scan: Scan, config: ReconConfig, seed: int = 0) -> tuple[np.
         touching = 0
         for o in objects:
             s = o @ n + d
-            if np.mean(s > -config.floor_ransac_distance) > 0.95 and s.min() < config.support_distance:
+            if np.mean(s > -config.floor_ransac_distance) > 0.95 and s.min() < scene.support_distance:
                 touching += 1
         key = (touching, -rank)
         if best is None or key > best[0]:

@@ -2,7 +2,7 @@
 
 A point is an outlier when the mean distance to its ``neighbors`` nearest neighbours exceeds the
 cloud's mean of that statistic by ``std_ratio`` standard deviations (the classic PCL / open3d test,
-here on scipy's KD-tree, which is several times faster than open3d's on these cloud sizes).
+here on scipy's KD-tree).
 """
 
 from __future__ import annotations

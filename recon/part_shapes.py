@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from recon.config import ReconConfig
+from recon.config import ShapeConfig
 from recon.model import JointEstimate, JointType
 from recon.primitive import Primitive, PrimitiveKind
 
@@ -81,13 +81,12 @@ def _uncovered_cells(lo: np.ndarray, hi: np.ndarray, holes: list[tuple[np.ndarra
 
 
 def carcass_shapes(body: Primitive, fronts: list[tuple[np.ndarray, Primitive]],
-                   config: ReconConfig) -> tuple[Primitive, ...]:
+                   config: ShapeConfig) -> tuple[Primitive, ...]:
     """The body as panels of ``carcass_wall`` (m). ``fronts`` are (outward normal (3,) world, front
     primitive) of its drawers and doors: the face with that normal gets openings where the fronts'
     outlines are, the rest of it stays a panel (a microwave's control panel, the stiles between doors).
     A front whose outer face lies deeper than ``front_depth_tolerance`` inside the body opens nothing:
-    the opening would stay open around it (measured: a realistic microwave door fitted 8 cm inside its body made
-    the object's IoU 0.63 -> 0.17).
+    the opening would stay open around it.
     ``(body,)`` unchanged when it is no box, no face is open, or it is too thin to be hollow."""
     if body.kind is not PrimitiveKind.BOX or min(body.size) < 4 * config.carcass_wall:
         return (body,)
@@ -125,7 +124,8 @@ def carcass_shapes(body: Primitive, fronts: list[tuple[np.ndarray, Primitive]],
     return tuple(panels)
 
 
-def drawer_shapes(front: Primitive, axis: np.ndarray, body: Primitive, config: ReconConfig) -> tuple[Primitive, ...]:
+def drawer_shapes(front: Primitive, axis: np.ndarray, body: Primitive, config: ShapeConfig,
+                  back_clearance: float) -> tuple[Primitive, ...]:
     """A drawer: its front panel and, behind it, an open-topped box (bottom, two sides, back) of
     ``drawer_wall`` (m) inside the body's carcass, ``drawer_gap`` (m) clear of every carcass panel, as deep
     as the body allows (back panel + ``drawer_back_clearance``) and ``drawer_box_height`` of the front's
@@ -144,10 +144,10 @@ def drawer_shapes(front: Primitive, axis: np.ndarray, body: Primitive, config: R
     hi = np.minimum(fhi - config.drawer_gap, inner_hi)
     if s > 0:
         hi[a] = flo[a]
-        lo[a] = blo[a] + config.drawer_back_clearance
+        lo[a] = blo[a] + back_clearance
     else:
         lo[a] = fhi[a]
-        hi[a] = bhi[a] - config.drawer_back_clearance
+        hi[a] = bhi[a] - back_clearance
     up = [k for k in range(3) if k != a]
     v = max(up, key=lambda k: abs(R[2, k]))         # the body axis nearest vertical
     u = next(k for k in up if k != v)
@@ -166,7 +166,7 @@ def drawer_shapes(front: Primitive, axis: np.ndarray, body: Primitive, config: R
 
 
 def template_shapes(joints: tuple[JointEstimate, ...], prims: dict[int, Primitive], labels: dict[int, str],
-                    config: ReconConfig) -> dict[int, tuple[Primitive, ...]]:
+                    config: ShapeConfig, back_clearance: float) -> dict[int, tuple[Primitive, ...]]:
     """{part_id: template shapes, world frame} of an object's drawers (front + box) and of the parents
     of its drawers/doors (a carcass open at their fronts); parts not listed keep their primitive."""
     opens: dict[int, list[tuple[np.ndarray, Primitive]]] = {}
@@ -177,7 +177,8 @@ def template_shapes(joints: tuple[JointEstimate, ...], prims: dict[int, Primitiv
         if j.type is JointType.PRISMATIC:
             normal = j.axis
             if labels[j.child_part_id] == "drawer":
-                out[j.child_part_id] = drawer_shapes(prims[j.child_part_id], j.axis, prims[j.parent_part_id], config)
+                out[j.child_part_id] = drawer_shapes(prims[j.child_part_id], j.axis, prims[j.parent_part_id], config,
+                                                     back_clearance)
         else:
             n = np.cross(j.axis, prims[j.child_part_id].center - j.origin)
             if np.linalg.norm(n) < 1e-9:

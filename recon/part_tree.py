@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import networkx as nx
 import numpy as np
 
-from recon.config import ReconConfig
+from recon.config import ContactConfig, TreeConfig
 from recon.model import ContactEdge, ObjectReconstruction
 from recon.primitive import Primitive
 from recon.templates import ROOT_LABELS, expected_contact, template_for
@@ -77,7 +77,7 @@ def part_distances(prims: dict[int, Primitive]) -> dict[tuple[int, int], float]:
 
 
 def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
-              contacts: tuple[ContactEdge, ...], config: ReconConfig,
+              contacts: tuple[ContactEdge, ...], config: TreeConfig, contact_config: ContactConfig,
               distances: dict[tuple[int, int], float] | None = None) -> PartTree:
     """Solve Eq. 4 for one object. ``labels``/``volumes`` : {part_id: label / m^3}.
 
@@ -95,7 +95,7 @@ def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
             continue
         tpl = template_for(category, labels[e.child_part_id])
         prior = 1.0 if tpl is None or labels[e.parent_part_id] in tpl.parents else config.foreign_parent_penalty
-        w = e.score * prior * (1.0 - 0.01 * e.dist / max(config.theta_d, 1e-9))
+        w = e.score * prior * (1.0 - 0.01 * e.dist / max(contact_config.theta_d, 1e-9))
         g.add_edge(e.parent_part_id, e.child_part_id, weight=w)
         by_pair[(e.parent_part_id, e.child_part_id)] = e
     for v in labels:
@@ -126,7 +126,7 @@ def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
     return PartTree(root, parent, edges, tuple(sorted(isolated)))
 
 
-def contact_scores(obj: ObjectReconstruction, config: ReconConfig, weighted: bool = True
+def contact_scores(obj: ObjectReconstruction, config: TreeConfig, weighted: bool = True
                    ) -> dict[tuple[int, int], float]:
     """{(min id, max id): score} of every estimated contact of ``obj`` (the scored edge list for the
     kinematic-structure mAP).

@@ -130,7 +130,7 @@ def reconstruct(scan_path, labels_path, *, config: ReconConfig = ReconConfig(), 
     seed : every random choice (sampling, RANSAC) derives from it; same inputs + seed = same output.
     Raises :class:`recon.ScanError` on unusable input; per-part problems go to ``.warnings``.
     """
-    return reconstruct_scan(read_scan(scan_path, labels_path, config), config=config,
+    return reconstruct_scan(read_scan(scan_path, labels_path, config.scan), config=config,
                             level_floor=level_floor, seed=seed, progress=progress)
 
 
@@ -176,9 +176,9 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
     run.timings["joints"] = time.perf_counter() - t0
 
     graph = SceneGraph(tuple((o.id, o.supported_by) for o in objects),
-                       proximal_relations({o.id: list(o.primitives().values()) for o in objects}, config))
+                       proximal_relations({o.id: list(o.primitives().values()) for o in objects}, config.scene))
     walls = ()
-    if config.walls:
+    if config.walls.walls:
         t0 = time.perf_counter()
         walls = room_walls(scan, run)
         run.timings["walls"] = time.perf_counter() - t0
@@ -195,15 +195,15 @@ def level_scan(scan: Scan, run: _Run) -> Scan:
     """The scan moved rigidly so that its floor plane is z = 0 with z up (leveling.py)."""
     from recon.leveling import floor_transform
 
-    T, tilt = floor_transform(scan, run.config, run.seed)
+    T, tilt = floor_transform(scan, run.config.leveling, run.config.scene, run.seed)
     log.info("levelled the scan: up direction was %.1f deg off", np.degrees(tilt))
     return scan.transformed(T)
 
 
 def remove_outliers(scan: Scan, run: _Run) -> Scan:
     """The scan without statistical outliers (flying pixels), judged part by part."""
-    scan, removed = scan_without_outliers(scan, neighbors=run.config.outlier_neighbors,
-                                          std_ratio=run.config.outlier_std_ratio)
+    scan, removed = scan_without_outliers(scan, neighbors=run.config.scan.outlier_neighbors,
+                                          std_ratio=run.config.scan.outlier_std_ratio)
     if removed:
         log.info("removed %d outlier points (flying pixels)", removed)
     return scan
@@ -218,7 +218,7 @@ def _part_seed(seed: int, part_id: int) -> int:
 def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     """Eq. 3 for every part of ``obj``: the base part first, whose axes then orient the small parts
     (fewer than ``small_part_points`` points)."""
-    config = run.config
+    config = run.config.fitting
     labels = {p.part_id: p.label for p in obj.parts}
     base = choose_root(labels, {p.part_id: float(len(p.points)) for p in obj.parts})
     state = ObjectState(obj, labels, {p.part_id: p.points for p in obj.parts}, base)
@@ -242,25 +242,25 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
 def complete_parts(state: ObjectState, run: _Run) -> None:
     """Hidden legs placed at the free corner of their fitted legs' rectangle; legs, parts that reach
     another part and mounted parts (handles) extended onto what they stand on (completion.py)."""
-    config, obj, labels = run.config, state.source, state.labels
+    config, contacts, obj, labels = run.config.completion, run.config.contacts, state.source, state.labels
     prims, placed = complete_missing_legs(obj.category, state.prims, labels, obj.skipped, config, state.base)
     for i, centre in placed.items():
         leg = next(p for p in obj.skipped if p.part_id == i)
         labels[i] = leg.label
         state.fits[i] = FittedPart(prims[i], _NO_FIT, {}, len(leg.points))
         state.points[i] = leg.points if len(leg.points) >= 3 else prims[i].sample_surface(
-            config.surface_samples, np.random.default_rng(_part_seed(run.seed, i)))[0]
+            run.config.fitting.surface_samples, np.random.default_rng(_part_seed(run.seed, i)))[0]
         run.warn(f"{link_name(obj.category, obj.id, leg.label, i)}: part {i} ({leg.label}) has "
                  f"{len(leg.points)} points; placed at the free corner of its fitted legs' rectangle "
                  f"({centre[0]:.3f}, {centre[1]:.3f})")
-    prims, reached = complete_reaching_parts(prims, labels, config)
+    prims, reached = complete_reaching_parts(prims, labels, config, contacts)
     for i, gap in reached.items():
         log.info("object %d part %d (%s): extended %.3f m to the part it reaches", obj.id, i, labels[i], gap)
-    prims, completed = complete_vertical_parts(prims, labels, config)
+    prims, completed = complete_vertical_parts(prims, labels, config, contacts)
     for i, (down, up) in completed.items():
         log.info("object %d part %d (%s): extended %.3f m down, %.3f m up to its supports",
                  obj.id, i, labels[i], down, up)
-    prims, mounted = complete_mounted_parts(prims, labels, config)
+    prims, mounted = complete_mounted_parts(prims, labels, config, contacts)
     for i, gap in mounted.items():
         log.info("object %d part %d (%s): extended %.3f m back onto its mount", obj.id, i, labels[i], gap)
     state.prims = prims
@@ -268,9 +268,9 @@ def complete_parts(state: ObjectState, run: _Run) -> None:
 
 def contact_graph(state: ObjectState, run: _Run) -> None:
     """The surface planes Π of every part, then every directed Eq. 1 contact between them."""
-    planes = {i: part_planes(state.prims[i], state.points[i], run.config, _part_seed(run.seed, i))
+    planes = {i: part_planes(state.prims[i], state.points[i], run.config.contacts, _part_seed(run.seed, i))
               for i in state.prims}
-    state.contacts = contact_edges(planes, run.config)
+    state.contacts = contact_edges(planes, run.config.contacts)
 
 
 def build_part_tree(state: ObjectState, run: _Run) -> None:
@@ -278,7 +278,7 @@ def build_part_tree(state: ObjectState, run: _Run) -> None:
     reported."""
     prims, labels = state.prims, state.labels
     state.tree = tree = part_tree(state.category, labels, {i: prims[i].volume for i in prims}, state.contacts,
-                                  run.config, distances=part_distances(prims))
+                                  run.config.tree, run.config.contacts, distances=part_distances(prims))
     for i in tree.isolated:
         run.warn(f"{link_name(state.category, state.id, labels[i], i)}: part {i} ({labels[i]}) touches no "
                  f"other part of object {state.id}; fixed to the nearest possible parent, part {tree.parent[i]} "
@@ -286,15 +286,17 @@ def build_part_tree(state: ObjectState, run: _Run) -> None:
 
 
 def refine(state: ObjectState, run: _Run) -> None:
-    """Alg. 1 (when ``config.refine``): each child rotated, then moved, onto its parent's planes."""
-    if run.config.refine:
-        state.prims = refine_parts(state.prims, state.tree, run.config)
+    """Alg. 1 (when ``refine`` is on): each child rotated, then moved, onto its parent's planes."""
+    if run.config.refinement.refine:
+        state.prims = refine_parts(state.prims, state.tree, run.config.refinement, run.config.contacts,
+                                   run.config.fitting)
 
 
 def shape_handles(state: ObjectState, run: _Run) -> None:
     """Each handle's bar where its points are, its posts reaching back to the (refined) mount face."""
-    state.prims, state.handles = mounted_handle_shapes(state.prims, state.labels, state.points, run.config,
-                                                       state.name, state.tree.parent)
+    c = run.config
+    state.prims, state.handles = mounted_handle_shapes(state.prims, state.labels, state.points, c.handles, c.contacts,
+                                                       c.fitting, c.completion, state.name, state.tree.parent)
 
 
 # --- scene stages --------------------------------------------------------------------------------------
@@ -302,7 +304,7 @@ def shape_handles(state: ObjectState, run: _Run) -> None:
 def place_on_supports(states: list[ObjectState], run: _Run) -> dict[int, tuple[int | None, float]]:
     """Every object set upright (tilt below ``max_upright_tilt``), then resting on the floor or its
     supporter, floor-supported objects first; returns :func:`recon.scene_graph.support_relations`."""
-    config = run.config
+    config = run.config.scene
     for s in states:
         R = upright_correction(s.prims[s.tree.root], config)
         if not np.allclose(R, np.eye(3)):
@@ -333,7 +335,7 @@ class _Obstacles:
     def __init__(self, scan: Scan, states: list[ObjectState], run: _Run):
         rng = np.random.default_rng(run.seed)
         self.points, self.part_id = scan.points, scan.part_id
-        self.shells = {s.id: np.concatenate([_surface_samples(p, run.config.obstacle_spacing, rng)
+        self.shells = {s.id: np.concatenate([_surface_samples(p, run.config.joints.obstacle_spacing, rng)
                                              for p in s.prims.values()]) for s in states}
 
     def for_object(self, object_id: int) -> Callable[[object], np.ndarray]:
@@ -353,14 +355,15 @@ def estimate_object_joints(state: ObjectState, obstacles: _Obstacles, supported_
     config, labels, prims, tree = run.config, state.labels, state.prims, state.tree
     names = {i: joint_name(state.category, state.id, labels[i], i) for i in labels}
     joints = estimate_joints(state.category, names, labels, prims, tree, obstacles.for_object(state.id),
-                             config, run.warn)
+                             config.joints, config.contacts, config.fitting, run.warn)
     joints = with_joint_uncertainty(joints, state.source.parts, prims, obstacles.for_object(state.id), config, run.seed)
-    shapes = template_shapes(joints, prims, labels, config) if config.template_shapes else {}
+    shapes = (template_shapes(joints, prims, labels, config.shapes, config.joints.drawer_back_clearance)
+              if config.shapes.template_shapes else {})
     shapes.update(posed_handle_shapes(state.handles, prims))
     parts = tuple(
         PartFit(i, labels[i], link_name(state.category, state.id, labels[i], i), prims[i],
                 float(state.fits[i].score.total), dict(state.fits[i].candidate_scores), int(state.fits[i].n_points),
-                prims[i].planes(config.cylinder_side_faces), shapes.get(i, ()))
+                prims[i].planes(config.contacts.cylinder_side_faces), shapes.get(i, ()))
         for i in labels)
     T_wo, size = object_frame([prims[tree.root]] + [p for i, p in prims.items() if i != tree.root],
                               object_front(joints, prims))
@@ -372,7 +375,7 @@ def room_walls(scan: Scan, run: _Run) -> tuple:
     """The room's walls fitted to the background points (the points of no object)."""
     labelled = scan.object_id >= 0
     centre = scan.points[labelled].mean(axis=0) if labelled.any() else scan.points.mean(axis=0)
-    return walls_from_background(scan.points[~labelled], centre, run.config, run.seed)
+    return walls_from_background(scan.points[~labelled], centre, run.config.walls, run.seed)
 
 
 def _degeneracy(points: np.ndarray, min_thickness: float) -> str:

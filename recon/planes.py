@@ -1,4 +1,4 @@
-"""Surface planes Π of a part, two ways (``ReconConfig.planes``):
+"""Surface planes Π of a part, two ways (``ContactConfig.planes``):
 
     "exact"  the faces of the fitted primitive (``Primitive.planes``): complete, even where the camera
              saw nothing, and consistent with the geometry that goes into the URDF;
@@ -13,14 +13,14 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from recon.config import ReconConfig
+from recon.config import ContactConfig
 from recon.contacts import plane_basis
 from recon.primitive import Primitive, SurfacePlane
 
 __all__ = ["part_planes", "ransac_planes"]
 
 
-def ransac_planes(points: np.ndarray, config: ReconConfig, seed: int = 0) -> tuple[SurfacePlane, ...]:
+def ransac_planes(points: np.ndarray, config: ContactConfig, seed: int = 0) -> tuple[SurfacePlane, ...]:
     """Planes of ``points`` (n, 3) by iterated RANSAC; normals point away from the points' centroid."""
     from recon.open3d_engine import segment_planes
 
@@ -42,11 +42,11 @@ def ransac_planes(points: np.ndarray, config: ReconConfig, seed: int = 0) -> tup
     return tuple(out)
 
 
-def part_planes(prim: Primitive, points: np.ndarray, config: ReconConfig, seed: int = 0
+def part_planes(prim: Primitive, points: np.ndarray, config: ContactConfig, seed: int = 0
                 ) -> tuple[SurfacePlane, ...]:
     """The planes Π used by the contact test, per ``config.planes``."""
     if config.planes == "exact":
         return prim.planes(config.cylinder_side_faces)
     if config.planes == "ransac":
         return ransac_planes(points, config, seed)
-    raise ValueError(f"ReconConfig.planes must be 'exact' or 'ransac', got {config.planes!r}")
+    raise ValueError(f"ContactConfig.planes must be 'exact' or 'ransac', got {config.planes!r}")

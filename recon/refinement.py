@@ -16,7 +16,7 @@ import logging
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from recon.config import ReconConfig
+from recon.config import ContactConfig, FittingConfig, RefinementConfig
 from recon.contacts import contact_pairs
 from recon.part_tree import PartTree
 from recon.primitive import Primitive
@@ -26,10 +26,11 @@ __all__ = ["refine_rotation", "refine_parts", "interpenetration"]
 log = logging.getLogger(__name__)
 
 
-def refine_rotation(parent: Primitive, child: Primitive, config: ReconConfig) -> np.ndarray:
+def refine_rotation(parent: Primitive, child: Primitive, config: RefinementConfig,
+                    contacts: ContactConfig) -> np.ndarray:
     """(3, 3) rotation R (world) such that R @ child normals ≈ matched parent normals (Eq. 5)."""
-    Np = np.stack([p.normal for p in parent.planes(config.cylinder_side_faces)])
-    Nc = np.stack([c.normal for c in child.planes(config.cylinder_side_faces)])
+    Np = np.stack([p.normal for p in parent.planes(contacts.cylinder_side_faces)])
+    Nc = np.stack([c.normal for c in child.planes(contacts.cylinder_side_faces)])
     dots = Nc @ Np.T
     best = np.argmax(np.abs(dots), axis=1)
     cos = dots[np.arange(len(Nc)), best]
@@ -45,14 +46,14 @@ def refine_rotation(parent: Primitive, child: Primitive, config: ReconConfig) ->
     return rot.as_matrix()
 
 
-def _front_panel(child: Primitive, normal: np.ndarray, config: ReconConfig) -> bool:
+def _front_panel(child: Primitive, normal: np.ndarray, contacts: ContactConfig, fitting: FittingConfig) -> bool:
     """Is ``child`` a panel (thinnest extent below ``panel_ratio`` × the next) whose thin axis is along
     the contact plane's unit ``normal`` (3,) (|cos| >= ``theta_a``)?"""
     order = np.argsort(child.size)
-    if child.size[order[0]] >= config.panel_ratio * child.size[order[1]]:
+    if child.size[order[0]] >= fitting.panel_ratio * child.size[order[1]]:
         return False
     thin = child.T_world_part[:3, int(order[0])]
-    return bool(abs(float(thin @ normal)) >= config.theta_a)
+    return bool(abs(float(thin @ normal)) >= contacts.theta_a)
 
 
 def _rotate_about(T: np.ndarray, R: np.ndarray, centre: np.ndarray) -> np.ndarray:
@@ -63,13 +64,13 @@ def _rotate_about(T: np.ndarray, R: np.ndarray, centre: np.ndarray) -> np.ndarra
 
 
 def refine_parts(prims: dict[int, Primitive], tree: PartTree,
-                 config: ReconConfig) -> dict[int, Primitive]:
+                 config: RefinementConfig, contacts: ContactConfig, fitting: FittingConfig) -> dict[int, Primitive]:
     """Alg. 1 over one object's tree: {part_id: primitive} -> refined {part_id: primitive}."""
     out = dict(prims)
     for c in tree.top_down():
         p = tree.parent[c]
         sub = tree.subtree(c)
-        R = refine_rotation(out[p], out[c], config)
+        R = refine_rotation(out[p], out[c], config, contacts)
         angle = Rotation.from_matrix(R).magnitude()
         if angle > config.refine_max_angle:
             log.info("part %d: refinement rotation %.1f deg rejected", c, np.degrees(angle))
@@ -81,25 +82,25 @@ def refine_parts(prims: dict[int, Primitive], tree: PartTree,
         if tree.edges.get(c) is None:
             continue
         # translate onto the contact plane only when one plane pair is clearly the contact
-        pairs = contact_pairs(out[p].planes(config.cylinder_side_faces),
-                              out[c].planes(config.cylinder_side_faces), config)
+        pairs = contact_pairs(out[p].planes(contacts.cylinder_side_faces),
+                              out[c].planes(contacts.cylinder_side_faces), contacts)
         if not pairs:
             continue
         pairs.sort(key=lambda t: (-round(t[2], 3), t[4]))     # equal Cont: the closer pair
         best = pairs[0]
         rivals = [t for t in pairs[1:] if t[2] >= best[2] - config.snap_ambiguity
-                  and abs(abs(float(out[p].planes(config.cylinder_side_faces)[t[0]].normal
-                                    @ out[p].planes(config.cylinder_side_faces)[best[0]].normal)) - 1) > 1e-3]
+                  and abs(abs(float(out[p].planes(contacts.cylinder_side_faces)[t[0]].normal
+                                    @ out[p].planes(contacts.cylinder_side_faces)[best[0]].normal)) - 1) > 1e-3]
         if rivals:
             log.debug("part %d: contact planes ambiguous, no translation", c)
             continue
-        pp = out[p].planes(config.cylinder_side_faces)[best[0]]
-        cp = out[c].planes(config.cylinder_side_faces)[best[1]]
-        if not config.snap_front_panels and _front_panel(out[c], pp.normal, config):
+        pp = out[p].planes(contacts.cylinder_side_faces)[best[0]]
+        cp = out[c].planes(contacts.cylinder_side_faces)[best[1]]
+        if not config.snap_front_panels and _front_panel(out[c], pp.normal, contacts, fitting):
             log.debug("part %d: a front panel keeps its measured face (no snap)", c)
             continue
         signed = float(np.mean(cp.polygon @ pp.normal + pp.d))
-        if abs(signed) <= config.theta_d:
+        if abs(signed) <= contacts.theta_d:
             M = np.eye(4)
             M[:3, 3] = -signed * pp.normal
             for v in sub:

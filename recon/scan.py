@@ -1,6 +1,6 @@
 """Read and validate a labelled scan: ``scan.ply`` or ``scan.npz`` plus ``labels.json``.
 
-The format (../shared/DESIGN.md): per point ``x y z`` (metres, z up), optional normals and colours,
+The format (README.md, "Input format"): per point ``x y z`` (metres, z up), optional normals and colours,
 ``object_id`` (-1 = background) and ``part_id`` (-1 = none); labels.json lists the objects with their
 category and parts with their labels. Problems that make the file unusable raise :class:`ScanError`
 naming the file and field; problems local to one part (too few points, an unknown label, an id the
@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from recon.config import ReconConfig
+from recon.config import ReconConfig, ScanConfig
 from recon.errors import ScanError
 from scenes.description import KNOWN_CATEGORIES, KNOWN_LABELS
 
@@ -153,8 +153,10 @@ def _read_labels(path: Path) -> list[dict]:
 
 
 def read_scan(scan_path: str | Path, labels_path: str | Path,
-              config: ReconConfig = ReconConfig()) -> Scan:
+              config: ScanConfig | ReconConfig = ScanConfig()) -> Scan:
     """Read ``scan_path`` (.ply or .npz) and ``labels_path`` (labels.json) into a validated :class:`Scan`.
+
+    config : the scan group (a whole :class:`ReconConfig` gives its ``scan`` group).
 
     Raises ScanError when a file is missing or malformed, when coordinates are NaN/inf, when the
     scan is empty, or when its extent says millimetres. Per-part problems become warnings.
@@ -174,9 +176,11 @@ def read_scan(scan_path: str | Path, labels_path: str | Path,
 
 
 def scan_from_arrays(props: dict[str, np.ndarray], labels: list[dict], *,
-                     config: ReconConfig = ReconConfig(), source: str = "<arrays>") -> Scan:
+                     config: ScanConfig | ReconConfig = ScanConfig(), source: str = "<arrays>") -> Scan:
     """Validate per-point arrays ``props`` (x, y, z, object_id, part_id, optional nx.., red..) against
     the parsed ``labels`` (the 'objects' list of labels.json). See :func:`read_scan`."""
+    if isinstance(config, ReconConfig):
+        config = config.scan
     for k in ("x", "y", "z", "object_id", "part_id"):
         if k not in props:
             raise ScanError(f"{source}: missing per-point field {k!r} (has {sorted(props)})")

@@ -13,7 +13,7 @@ import numpy as np
 import shapely
 from scipy.spatial.transform import Rotation
 
-from recon.config import ReconConfig
+from recon.config import SceneConfig
 from recon.model import JointEstimate, JointType
 from recon.primitive import Primitive
 
@@ -32,7 +32,7 @@ def footprint(prims: list[Primitive]) -> shapely.Geometry:
     return shapely.MultiPoint(_corners(prims)[:, :2]).convex_hull
 
 
-def upright_correction(root: Primitive, config: ReconConfig) -> np.ndarray:
+def upright_correction(root: Primitive, config: SceneConfig) -> np.ndarray:
     """(3, 3) rotation taking the root part's most vertical axis onto ±z (identity if tilt is 0 or
     larger than ``max_upright_tilt``, which is then taken as intended)."""
     R = root.T_world_part[:3, :3]
@@ -45,7 +45,7 @@ def upright_correction(root: Primitive, config: ReconConfig) -> np.ndarray:
     return rot.as_matrix()
 
 
-def support_relations(objects: dict[int, list[Primitive]], config: ReconConfig
+def support_relations(objects: dict[int, list[Primitive]], config: SceneConfig
                       ) -> dict[int, tuple[int | None, float]]:
     """{object id: (supporter id or None = floor, the supporting height z (m))}."""
     bottoms = {i: float(_corners(p)[:, 2].min()) for i, p in objects.items()}
@@ -67,7 +67,7 @@ def support_relations(objects: dict[int, list[Primitive]], config: ReconConfig
     return out
 
 
-def proximal_relations(objects: dict[int, list[Primitive]], config: ReconConfig) -> tuple[tuple[int, int], ...]:
+def proximal_relations(objects: dict[int, list[Primitive]], config: SceneConfig) -> tuple[tuple[int, int], ...]:
     """Pairs (a, b), a < b, of objects whose footprints are closer than ``proximal_distance``."""
     ids = sorted(objects)
     prints = [footprint(objects[i]) for i in ids]

@@ -87,7 +87,7 @@ def _moving_parts(obj) -> set:
 
 def scene_model(rec: Reconstruction, name: str = "scene") -> SceneModel:
     """The scene as a :class:`SceneModel` (see the module docstring for frames and inertials)."""
-    cfg = rec.config
+    cfg = rec.config.urdf
     frames = link_frames(rec)
     links, joints = [Link(WORLD_LINK)], []
     for obj in rec.objects:

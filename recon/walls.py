@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from recon.config import ReconConfig
+from recon.config import WallConfig
 
 __all__ = ["Wall", "walls_from_background"]
 
@@ -43,7 +43,7 @@ class Wall:
                 and np.allclose(self.T_world_wall, other.T_world_wall, atol=atol))
 
 
-def walls_from_background(points: np.ndarray, room_centre: np.ndarray, config: ReconConfig,
+def walls_from_background(points: np.ndarray, room_centre: np.ndarray, config: WallConfig,
                           seed: int = 0) -> tuple[Wall, ...]:
     """Walls found in the background ``points`` (n, 3) world (floor z = 0); ``room_centre`` (3,) is a
     point inside the room (the labelled objects' centroid) that tells which side of a plane is the

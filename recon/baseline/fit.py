@@ -11,11 +11,8 @@ For one labelled object with points P (all its parts together):
 
        score = mean_{p in P} d(p, template surface)
 
-   Only this direction is used. The reverse term (template surface samples to scan, Eq. 3's direction)
-   was measured on the kitchen's cabinet: 0.13-0.17 m for every candidate, dominated by the template's
-   drawer insides and back panel that no camera sees, and it made the back-facing candidate win
-   (score 0.136 vs 0.169 for the right one), while the scan-to-template term alone ranked the right yaw
-   first by a factor of 5 (0.0021 m vs 0.0094-0.033 m);
+   Only this direction is used: the reverse term (template surface samples to scan, Eq. 3's direction)
+   is dominated by the template's drawer insides and back panel that no camera sees;
 3. the lowest score wins. No parts are fitted: the object's estimate is the template's primitives.
    For the joint and structure metrics only, the template's parts are put in correspondence with the
    scan's labelled parts (same label, nearest centres, Hungarian), which carries the template's joints

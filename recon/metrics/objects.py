@@ -83,4 +83,4 @@ def estimate_from_reconstruction(obj: ObjectReconstruction, config: ReconConfig,
 
     solids = [(p.part_id, s) for p in obj.parts for s in p.solids]
     return ObjectEstimate(obj.id, obj.category, tuple(s for _, s in solids), tuple(obj.joints),
-                          contact_scores(obj, config), seconds, tuple(i for i, _ in solids))
+                          contact_scores(obj, config.tree), seconds, tuple(i for i, _ in solids))

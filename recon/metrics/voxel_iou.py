@@ -18,8 +18,8 @@ Occupancy is *solid* (filled, not only the surface), in two steps:
    closed cabinet (doors and drawers shut) is part of its solid, the space under a table is not.
 
 Why step 2: without it a hollow cabinet is a few one-voxel panel layers (18 mm panels, 20-60 mm voxels),
-and a sub-voxel shift of a perfect estimate flips whole layers (measured: IoU 0.54 for an exact
-template placed 5 mm off), so IoU would measure voxel aliasing instead of shape.
+and a sub-voxel shift of a perfect estimate flips whole layers, so IoU would measure voxel aliasing
+instead of shape.
 
     IoU = |occ(truth) & occ(estimate)| / |occ(truth) | occ(estimate)|
 """

@@ -70,14 +70,14 @@ def _check_bar(hs, tol_out: float):
         assert p.kind is PrimitiveKind.CYLINDER and abs(abs(p.T_world_part[0, 2]) - 1) < 1e-9
         assert abs(np.min(p.corners()[:, 0])) < 1e-9
         assert abs(np.max(p.corners()[:, 0]) - np.min(c[:, 0])) < 1e-9
-        assert abs(abs(p.center[1] - bar.center[1]) - (np.ptp(c[:, 1]) / 2 - CFG.handle_post_inset)) < 1e-9
+        assert abs(abs(p.center[1] - bar.center[1]) - (np.ptp(c[:, 1]) / 2 - CFG.handles.handle_post_inset)) < 1e-9
     env = hs.envelope.corners()
     assert np.min(env[:, 0]) == pytest.approx(0.0, abs=1e-9) and np.max(env[:, 0]) == pytest.approx(_outer_face(bar))
 
 
 def test_clean_bar_on_posts():
     rng = np.random.default_rng(0)
-    hs = handle_shapes(_bar_cloud(rng), _box_envelope(0.0, BAR_OUT, 0.11, 0.01), FACE, CFG)
+    hs = handle_shapes(_bar_cloud(rng), _box_envelope(0.0, BAR_OUT, 0.11, 0.01), FACE, CFG.handles, CFG.fitting)
     _check_bar(hs, tol_out=0.004)
 
 
@@ -85,7 +85,7 @@ def test_noisy_bar_with_label_bleed_on_the_front():
     rng = np.random.default_rng(1)
     pts = _bar_cloud(rng, noise=0.003, bleed=120)
     # the envelope a noisy fit gives: from behind the face (bleed noise) far out (noise)
-    hs = handle_shapes(pts, _box_envelope(-0.01, 0.06, 0.13, 0.03), FACE, CFG)
+    hs = handle_shapes(pts, _box_envelope(-0.01, 0.06, 0.13, 0.03), FACE, CFG.handles, CFG.fitting)
     _check_bar(hs, tol_out=0.006)
 
 
@@ -95,7 +95,7 @@ def test_bar_found_when_its_envelope_is_a_cylinder_along_the_bar():
     T[:3, :3] = np.array([[0, 0, 1], [1, 0, 0], [0, 1, 0]], float)   # local z along world y
     T[:3, 3] = [0.03, 0.0, 0.0]
     env = Primitive(PrimitiveKind.CYLINDER, [0.04, 0.04, 0.22], T)
-    _check_bar(handle_shapes(_bar_cloud(rng, noise=0.002), env, FACE, CFG), tol_out=0.005)
+    _check_bar(handle_shapes(_bar_cloud(rng, noise=0.002), env, FACE, CFG.handles, CFG.fitting), tol_out=0.005)
 
 
 def test_knob_is_a_cap_on_a_stem():
@@ -109,12 +109,12 @@ def test_knob_is_a_cap_on_a_stem():
     stem = np.c_[rng.uniform(0, out - 0.02, 15), r_stem * np.sin(b[:15]), r_stem * np.cos(b[:15])]
     pts = np.vstack([cap_front, cap_side, stem])
     pts[:, 0] += rng.normal(0, 0.002, len(pts))
-    hs = handle_shapes(pts, _box_envelope(0.0, out, r_cap, r_cap), FACE, CFG)
+    hs = handle_shapes(pts, _box_envelope(0.0, out, r_cap, r_cap), FACE, CFG.handles, CFG.fitting)
     assert hs.style is HandleStyle.KNOB, hs.reason
     cap, stem_shape = hs.shapes
     assert cap.kind is PrimitiveKind.CYLINDER and stem_shape.kind is PrimitiveKind.CYLINDER
     assert abs(_outer_face(cap) - out) < 0.006
-    assert 0.025 < cap.size[0] <= CFG.handle_knob_max_diameter and cap.size[2] <= CFG.handle_max_thickness
+    assert 0.025 < cap.size[0] <= CFG.handles.handle_knob_max_diameter and cap.size[2] <= CFG.handles.handle_max_thickness
     assert abs(np.min(stem_shape.corners()[:, 0])) < 1e-9
     assert np.linalg.norm(cap.center[1:] - stem_shape.center[1:]) < 1e-9 and cap.center[0] > stem_shape.center[0]
 
@@ -122,7 +122,7 @@ def test_knob_is_a_cap_on_a_stem():
 def test_degenerate_handle_on_the_front_plane_keeps_its_envelope():
     env = _box_envelope(0.0, 0.01, 0.02, 0.02)
     pts = np.array([[0.0, 0.0, 0.0], [0.0005, 0.01, 0.0], [-0.0005, 0.0, 0.01]])
-    hs = handle_shapes(pts, env, FACE, CFG)
+    hs = handle_shapes(pts, env, FACE, CFG.handles, CFG.fitting)
     assert hs.style is HandleStyle.ENVELOPE and hs.shapes == () and hs.envelope is env
     assert "0 of 3 points" in hs.reason
 
@@ -130,7 +130,7 @@ def test_degenerate_handle_on_the_front_plane_keeps_its_envelope():
 def test_a_flat_plate_with_no_standoff_keeps_its_envelope():
     rng = np.random.default_rng(4)
     pts = np.c_[rng.uniform(0.009, 0.012, 200), rng.uniform(-0.1, 0.1, 200), rng.uniform(-0.01, 0.01, 200)]
-    hs = handle_shapes(pts, _box_envelope(0.0, 0.012, 0.1, 0.01), FACE, CFG)
+    hs = handle_shapes(pts, _box_envelope(0.0, 0.012, 0.1, 0.01), FACE, CFG.handles, CFG.fitting)
     assert hs.style is HandleStyle.ENVELOPE and "room for its posts" in hs.reason
 
 
@@ -141,7 +141,7 @@ def test_bar_measured_from_the_face_its_mount_points_show():
     pts = _bar_cloud(rng, noise=0.002, bleed=100)
     face = SurfacePlane(np.array([1.0, 0.0, 0.0]), 0.01, FACE.polygon - [0.01, 0, 0])   # plane x = -0.01
     mount = np.c_[rng.normal(0.0, 0.002, 800), rng.uniform(-0.3, 0.3, 800), rng.uniform(-0.2, 0.2, 800)]
-    hs = handle_shapes(pts, _box_envelope(-0.01, BAR_OUT, 0.11, 0.01), face, CFG, mount)
+    hs = handle_shapes(pts, _box_envelope(-0.01, BAR_OUT, 0.11, 0.01), face, CFG.handles, CFG.fitting, mount)
     assert hs.style is HandleStyle.BAR
     assert abs(_outer_face(hs.shapes[0]) - BAR_OUT) < 0.006
     for p in hs.shapes[1:]:
@@ -155,14 +155,16 @@ def test_mounted_handles_follow_their_part_and_switch_off():
     prims = {1: front, 2: _box_envelope(0.0, BAR_OUT, 0.11, 0.01)}
     labels = {1: "drawer", 2: "handle"}
     points = {2: _bar_cloud(rng), 1: np.c_[np.zeros(300), rng.uniform(-0.3, 0.3, 300), rng.uniform(-0.2, 0.2, 300)]}
-    out, shapes = mounted_handle_shapes(prims, labels, points, CFG, "cabinet1")
+    out, shapes = mounted_handle_shapes(prims, labels, points, CFG.handles, CFG.contacts, CFG.fitting,
+                                        CFG.completion, "cabinet1")
     assert set(shapes) == {2} and out[1] is front and out[2] is shapes[2].envelope
     M = _shift([0.1, -0.2, 0.05])
     moved = posed_handle_shapes(shapes, {2: out[2].transformed(M)})[2]
     for a, b in zip(moved, shapes[2].shapes):
         assert a.isclose(b.transformed(M), atol=1e-12)
     from dataclasses import replace
-    off, none = mounted_handle_shapes(prims, labels, points, replace(CFG, handle_shapes=False))
+    off, none = mounted_handle_shapes(prims, labels, points, replace(CFG.handles, handle_shapes=False),
+                                      CFG.contacts, CFG.fitting, CFG.completion)
     assert none == {} and off[2] is prims[2]
 
 
@@ -178,7 +180,7 @@ def test_a_mount_fitted_in_front_of_its_bar_leaves_the_envelope():
     face = SurfacePlane(np.array([1.0, 0.0, 0.0]), -0.04, FACE.polygon + [0.04, 0, 0])   # plane x = +0.04
     mount = np.c_[rng.normal(0.0, 0.002, 800), rng.uniform(-0.3, 0.3, 800), rng.uniform(-0.2, 0.2, 800)]
     env = _box_envelope(0.04, 0.06, 0.11, 0.01)
-    hs = handle_shapes(_bar_cloud(rng, noise=0.002), env, face, CFG, mount)
+    hs = handle_shapes(_bar_cloud(rng, noise=0.002), env, face, CFG.handles, CFG.fitting, mount)
     assert hs.style is HandleStyle.ENVELOPE and hs.envelope is env and "room for its posts" in hs.reason
 
 
@@ -186,11 +188,11 @@ def test_the_mount_face_is_the_one_the_handle_stands_in_front_of():
     """A door 2 cm thick with a bar near its edge: the front face, not the side face next to the bar."""
     door = Primitive(PrimitiveKind.BOX, [0.02, 0.6, 0.8], _shift([-0.01, 0.0, 0.0]))
     pts = _bar_cloud(np.random.default_rng(8)) + [0.0, 0.27, 0.0]       # bar 3 cm in from the door's edge
-    face = facing_plane(door, pts, CFG)
+    face = facing_plane(door, pts, CFG.handles, CFG.contacts)
     assert face is not None and np.allclose(face.normal, [1, 0, 0]) and abs(face.d) < 1e-12
-    back = facing_plane(door, pts * [-1, 1, 1] - [0.02, 0, 0], CFG)      # the same bar behind the door
+    back = facing_plane(door, pts * [-1, 1, 1] - [0.02, 0, 0], CFG.handles, CFG.contacts)      # the same bar behind the door
     assert back is not None and np.allclose(back.normal, [-1, 0, 0])
-    assert facing_plane(door, pts * [0, 1, 1] - [0.01, 0, 0], CFG) is None   # points inside the door: no face
+    assert facing_plane(door, pts * [0, 1, 1] - [0.01, 0, 0], CFG.handles, CFG.contacts) is None   # points inside the door: no face
 
 
 def test_reconstructed_cabinet_handles_are_bars_on_posts_in_scene_urdf(kitchen_rec, kitchen_scan):
@@ -206,7 +208,7 @@ def test_reconstructed_cabinet_handles_are_bars_on_posts_in_scene_urdf(kitchen_r
         bar, *posts = part.solids
         assert len(posts) == 2 and bar.kind is PrimitiveKind.BOX
         assert abs(float(np.max(bar.corners()[:, 0])) - 0.53) < 0.005
-        assert max(np.sort(np.ptp(bar.corners(), axis=0))[:2]) <= CFG.handle_max_thickness + 1e-9
+        assert max(np.sort(np.ptp(bar.corners(), axis=0))[:2]) <= CFG.handles.handle_max_thickness + 1e-9
         for p in posts:
             assert abs(float(np.min(p.corners()[:, 0])) - 0.5) < 0.006
         assert text.count(f'<collision name="{part.link}_collision') == 3

@@ -65,7 +65,7 @@ HANDLE = _box([0.55, 0.55, 0.4], [0.03, 0.015, 0.2])      # near the +y edge: th
 
 
 def _hinge_error(door: Primitive) -> tuple[float, np.ndarray]:
-    axis, origin, _ = hinge(BODY, door, [HANDLE], np.array([1.0, 0, 0]), ReconConfig())
+    axis, origin, _ = hinge(BODY, door, [HANDLE], np.array([1.0, 0, 0]))
     assert abs(abs(axis[2]) - 1.0) < 1e-6
     e = origin[:2] - np.array([BODY_FRONT, 0.0])
     return float(np.linalg.norm(e)), e
@@ -73,7 +73,7 @@ def _hinge_error(door: Primitive) -> tuple[float, np.ndarray]:
 
 def test_noisy_door_with_bleed_gets_its_hinge_within_a_few_mm():
     pts, nrm = _door_scan()
-    _, door, _, _ = fit_part(pts, ReconConfig(), seed=0, normals=nrm)
+    _, door, _, _ = fit_part(pts, ReconConfig().fitting, seed=0, normals=nrm)
     err, e = _hinge_error(door)
     assert err < 0.004, f"hinge off by {e * 1000} mm"
     lo, hi = door.corners().min(axis=0), door.corners().max(axis=0)
@@ -86,7 +86,7 @@ def test_percentile_extents_put_the_hinge_off_by_more_than_a_centimetre():
     """The same scan without the front rules (edges never measured, board never placed): what the
     reconstruction did before, and what the rules above fix."""
     pts, nrm = _door_scan()
-    old = dataclasses.replace(ReconConfig(), front_edge_min_points=10**9)
+    old = dataclasses.replace(ReconConfig().fitting, front_edge_min_points=10**9)
     T = np.eye(4)
     T[:3, 3] = (pts.min(axis=0) + pts.max(axis=0)) / 2
     raw = Primitive(PrimitiveKind.BOX, pts.max(axis=0) - pts.min(axis=0), T)
@@ -107,7 +107,7 @@ def test_panel_seen_from_both_sides_keeps_its_noise_corrected_thickness():
     T = np.eye(4)
     T[:3, 3] = (pts.min(axis=0) + pts.max(axis=0)) / 2
     raw = Primitive(PrimitiveKind.BOX, pts.max(axis=0) - pts.min(axis=0), T)
-    box = denoised_box(raw, pts, ReconConfig(), nrm)
+    box = denoised_box(raw, pts, ReconConfig().fitting, nrm)
     assert box.size[0] > 0.03                      # not squashed to an 18 mm board
 
 
@@ -118,7 +118,7 @@ def test_clean_front_seen_only_by_its_face_is_a_board_behind_it():
     y, z = _grid(0.0, WIDTH, Z0, Z1, 0.008, rng)
     pts = np.c_[np.full(len(y), BODY_FRONT + THICK), y, z]
     nrm = np.tile([1.0, 0, 0], (len(y), 1))
-    _, door, _, _ = fit_part(pts, ReconConfig(), seed=0, normals=nrm)
+    _, door, _, _ = fit_part(pts, ReconConfig().fitting, seed=0, normals=nrm)
     lo, hi = door.corners().min(axis=0), door.corners().max(axis=0)
     assert hi[0] == pytest.approx(BODY_FRONT + THICK, abs=1e-3)
     assert lo[0] == pytest.approx(BODY_FRONT, abs=1e-3)

@@ -19,7 +19,7 @@ def test_drawer_slides_out_of_the_face_it_sits_in(kitchen_rec):
     assert j.type is JointType.PRISMATIC and j.parent_part_id == 101
     assert np.degrees(np.arccos(j.axis @ [1, 0, 0])) < 1.0
     assert j.lower == 0.0
-    cfg = ReconConfig()
+    cfg = ReconConfig().joints
     assert j.upper == pytest.approx(cfg.drawer_travel_fraction * (0.5 - cfg.drawer_back_clearance), abs=0.01)
     assert j.handle_part_id == 103
     # the origin lies on the line through the drawer along the axis
@@ -39,7 +39,7 @@ def test_door_hinges_on_the_edge_opposite_its_handle(synth, side):
     free = np.array([0.49, -hinge_y, 0.2])
     R = Rotation.from_rotvec(j.axis * 0.1).as_matrix()
     assert (R @ (free - j.origin) + j.origin)[0] > free[0] + 0.02
-    assert 0.0 < j.upper <= ReconConfig().door_max_angle
+    assert 0.0 < j.upper <= ReconConfig().joints.door_max_angle
 
 
 def test_fold_down_door_gets_a_horizontal_hinge_at_the_bottom(synth):
@@ -67,10 +67,10 @@ def test_door_swing_stops_at_a_neighbour(synth):
     rec = reconstruct_scan(scan_from_arrays(props, labels))
     j = joint(rec, "cabinet1_door104_joint")
     free = joint(reconstruct_scan(scan_from_arrays(*synth.scan_arrays([cab]))), "cabinet1_door104_joint")
-    assert free.upper == pytest.approx(ReconConfig().door_max_angle)
+    assert free.upper == pytest.approx(ReconConfig().joints.door_max_angle)
     assert np.radians(30) < j.upper < np.radians(55)
     # at the limit the (clearance-shrunk) door holds no scan point of the neighbour
-    door = rec.object(1).part(104).primitive.shrunk(ReconConfig().sweep_clearance)
+    door = rec.object(1).part(104).primitive.shrunk(ReconConfig().joints.sweep_clearance)
     pts = np.c_[props["x"], props["y"], props["z"]][props["object_id"] == 9]
 
     def swung(a):
@@ -79,7 +79,7 @@ def test_door_swing_stops_at_a_neighbour(synth):
         M[:3, 3] = j.origin - M[:3, :3] @ j.origin
         return door.transformed(M)
 
-    assert swung(j.upper).contains(pts).sum() < ReconConfig().sweep_min_points
+    assert swung(j.upper).contains(pts).sum() < ReconConfig().joints.sweep_min_points
     # a little further the door runs into the neighbour's (fitted, solid) box
     neighbour = rec.object(9).part(901).primitive
     samples, _ = swung(j.upper + 0.15).sample_surface(4000, np.random.default_rng(0))

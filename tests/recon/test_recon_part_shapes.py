@@ -33,41 +33,41 @@ def _grid(prim, n=9):
 
 
 def test_carcass_is_open_only_where_its_fronts_are():
-    panels = carcass_shapes(BODY, [(X, DRAWER)], CFG)
+    panels = carcass_shapes(BODY, [(X, DRAWER)], CFG.shapes)
     assert len(panels) > 5
     inside = lambda p: np.any([q.contains(np.atleast_2d(p)) for q in panels], axis=0)
     assert not inside([0.49, 0.0, 0.6])[0]                     # behind the drawer: open
     assert inside([0.49, 0.0, 0.2])[0]                         # behind where no front is: a panel
     assert inside([0.01, 0.0, 0.4])[0] and inside([0.25, 0.0, 0.79])[0]   # back and top panels
     assert not inside([0.25, 0.0, 0.4])[0]                     # hollow
-    both = carcass_shapes(BODY, [(X, DRAWER), (X, DOOR)], CFG)
+    both = carcass_shapes(BODY, [(X, DRAWER), (X, DOOR)], CFG.shapes)
     assert not any(q.contains(np.array([[0.49, 0.0, 0.2]]))[0] for q in both)
 
 
 def test_no_front_or_a_cylinder_body_keeps_the_solid_primitive():
-    assert carcass_shapes(BODY, [], CFG) == (BODY,)
+    assert carcass_shapes(BODY, [], CFG.shapes) == (BODY,)
     side = np.array([0.0, 1.0, 0.0])
     assert carcass_shapes(BODY, [(np.array([0.7, 0.7, 0.1]) / np.linalg.norm([0.7, 0.7, 0.1]), DRAWER)],
-                          CFG) == (BODY,)
+                          CFG.shapes) == (BODY,)
     cyl = Primitive("cylinder", [0.5, 0.5, 0.8], BODY.T_world_part)
-    assert carcass_shapes(cyl, [(side, DRAWER)], CFG) == (cyl,)
+    assert carcass_shapes(cyl, [(side, DRAWER)], CFG.shapes) == (cyl,)
 
 
 def test_drawer_box_reaches_back_inside_the_carcass_without_touching_it():
-    shapes = drawer_shapes(DRAWER, X, BODY, CFG)
+    shapes = drawer_shapes(DRAWER, X, BODY, CFG.shapes, CFG.joints.drawer_back_clearance)
     assert shapes[0] is DRAWER and len(shapes) == 5
     box_pts = np.concatenate([_grid(s.shrunk(1e-4)) for s in shapes[1:]])
-    assert box_pts[:, 0].min() == pytest.approx(CFG.drawer_back_clearance, abs=1e-3)   # back clearance
+    assert box_pts[:, 0].min() == pytest.approx(CFG.joints.drawer_back_clearance, abs=1e-3)   # back clearance
     assert box_pts[:, 0].max() <= 0.5 + 1e-9                                            # behind the front
-    panels = carcass_shapes(BODY, [(X, DRAWER), (X, DOOR)], CFG)
+    panels = carcass_shapes(BODY, [(X, DRAWER), (X, DOOR)], CFG.shapes)
     for s in np.linspace(0.0, 0.4, 5):                                                  # slid out by s
         assert not any(q.contains(box_pts + s * X).any() for q in panels), s
 
 
 def test_no_room_behind_the_front_leaves_the_front_alone():
     thin_body = box([0.45, -0.4, 0], [0.5, 0.4, 0.8])
-    assert drawer_shapes(DRAWER, X, thin_body, CFG) == (DRAWER,)
-    assert drawer_shapes(DRAWER, np.array([0.0, 0.0, 1.0]), BODY, CFG) == (DRAWER,)
+    assert drawer_shapes(DRAWER, X, thin_body, CFG.shapes, CFG.joints.drawer_back_clearance) == (DRAWER,)
+    assert drawer_shapes(DRAWER, np.array([0.0, 0.0, 1.0]), BODY, CFG.shapes, CFG.joints.drawer_back_clearance) == (DRAWER,)
 
 
 def test_reconstructed_drawer_box_slides_free_in_its_carcass_in_pybullet(kitchen_rec, tmp_path):
@@ -108,7 +108,7 @@ def test_reconstructed_drawer_box_slides_free_in_its_carcass_in_pybullet(kitchen
 
 def test_a_front_sunk_deep_into_its_body_opens_no_hole():
     sunk = box([0.42, -0.375, 0.425], [0.43, 0.375, 0.775])     # 7-8 cm inside the +x face
-    panels = carcass_shapes(BODY, [(X, sunk)], CFG)
+    panels = carcass_shapes(BODY, [(X, sunk)], CFG.shapes)
     assert any(q.contains(np.array([[0.49, 0.0, 0.6]]))[0] for q in panels)   # the face stays closed
     inset = box([0.48, -0.375, 0.425], [0.5, 0.375, 0.775])     # flush inset front: opens
-    assert not any(q.contains(np.array([[0.49, 0.0, 0.6]]))[0] for q in carcass_shapes(BODY, [(X, inset)], CFG))
+    assert not any(q.contains(np.array([[0.49, 0.0, 0.6]]))[0] for q in carcass_shapes(BODY, [(X, inset)], CFG.shapes))

@@ -83,7 +83,7 @@ def test_graph_json_round_trip(tmp_path, kitchen_rec):
         assert o1.name == o2.name and o1.root_part_id == o2.root_part_id
         assert all(p1.isclose(p2) for p1, p2 in zip(o1.parts, o2.parts))
         assert all(j1.isclose(j2) for j1, j2 in zip(o1.joints, o2.joints))
-        assert contact_scores(o1, kitchen_rec.config) == contact_scores(o2, back.config)
+        assert contact_scores(o1, kitchen_rec.config.tree) == contact_scores(o2, back.config.tree)
         assert np.allclose(o1.T_world_object, o2.T_world_object)
     assert back.graph == kitchen_rec.graph
     doc = json.loads(paths["graph.json"].read_text())
@@ -117,7 +117,7 @@ def test_scene_urdf_loads_everywhere_and_matches_the_graph(tmp_path, kitchen_rec
     # moving parts' collision boxes are shrunk by the clearance; fixed parts' are not
     drawer = next(lk for lk in urdf.robot.links if lk.name == "cabinet1_drawer102")
     body = next(lk for lk in urdf.robot.links if lk.name == "cabinet1_body101")
-    clr = kitchen_rec.config.collision_clearance
+    clr = kitchen_rec.config.urdf.collision_clearance
     assert np.allclose(drawer.visuals[0].geometry.box.size - drawer.collisions[0].geometry.box.size, 2 * clr)
     assert np.allclose(body.visuals[0].geometry.box.size, body.collisions[0].geometry.box.size)
 
@@ -176,4 +176,4 @@ def test_flat_and_collinear_parts_are_reconstructed_with_a_warning_naming_them()
     assert "object 4 (table) part 41 (top): its points are flat" in text
     assert "object 4 (table) part 42 (leg): its points are collinear" in text
     sizes = {p.part_id: np.sort(p.primitive.size) for p in rec.object(4).parts}
-    assert sizes[41][0] == pytest.approx(rec.config.min_thickness) and sizes[41][2] == pytest.approx(0.4, abs=0.02)
+    assert sizes[41][0] == pytest.approx(rec.config.fitting.min_thickness) and sizes[41][2] == pytest.approx(0.4, abs=0.02)

@@ -10,6 +10,8 @@ from recon.config import ReconConfig
 from recon.fitting import fit_part
 from recon.primitive import Primitive, PrimitiveKind
 
+FIT = ReconConfig().fitting
+
 
 def pose(rotvec=(0, 0, 0), t=(0, 0, 0)):
     T = np.eye(4)
@@ -57,13 +59,13 @@ def _cloud(mesh, n=2000, seed=0, hidden=None):
 def test_box_fit_recovers_size_and_pose_and_is_rotation_invariant():
     T = pose((0.0, 0.0, 0.6), (1.0, -2.0, 0.35))
     pts = _cloud(trimesh.creation.box([0.6, 0.4, 0.7], transform=T))
-    name, prim, score, table = fit_part(pts, seed=1)
+    name, prim, score, table = fit_part(pts, FIT, seed=1)
     assert name == "box" and table["box"] == min(table.values())
     assert np.allclose(np.sort(prim.size), [0.4, 0.6, 0.7], atol=0.01)
     assert np.linalg.norm(prim.center - T[:3, 3]) < 0.01
     # invariance: fitting the rotated cloud gives the rotated fit (same shape, moved centre)
     M = pose((0.2, -0.1, 1.1), (0.3, 0.4, -0.2))
-    _, prim2, _, _ = fit_part(pts @ M[:3, :3].T + M[:3, 3], seed=1)
+    _, prim2, _, _ = fit_part(pts @ M[:3, :3].T + M[:3, 3], FIT, seed=1)
     assert prim2.kind is PrimitiveKind.BOX
     assert np.allclose(np.sort(prim2.size), np.sort(prim.size), atol=0.01)
     assert np.linalg.norm(prim2.center - (M[:3, :3] @ prim.center + M[:3, 3])) < 0.01
@@ -73,7 +75,7 @@ def test_box_fit_recovers_size_and_pose_and_is_rotation_invariant():
 def test_cylinder_fit_even_when_half_of_it_is_hidden():
     leg = trimesh.creation.cylinder(radius=0.03, height=0.72, sections=64, transform=pose(t=(2, 1, 0.36)))
     for hidden in (None, [[-1.0, 0.0, 0.0]]):
-        name, prim, _, table = fit_part(_cloud(leg, 800, hidden=hidden), seed=0)
+        name, prim, _, table = fit_part(_cloud(leg, 800, hidden=hidden), FIT, seed=0)
         assert name.startswith("cylinder"), table
         assert prim.radius == pytest.approx(0.03, abs=0.003)
         assert prim.length == pytest.approx(0.72, abs=0.01)
@@ -85,7 +87,7 @@ def test_unobserved_faces_are_left_out_of_the_score():
     box for the missing faces; the observed-face score does not, and the box still wins."""
     body = trimesh.creation.box([0.5, 0.8, 0.8], transform=pose(t=(0.25, 0, 0.4)))
     pts = _cloud(body, 3000, hidden=[[-1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
-    name, prim, score, _ = fit_part(pts, seed=0)
+    name, prim, score, _ = fit_part(pts, FIT, seed=0)
     assert name == "box"
     assert np.allclose(np.sort(prim.size), [0.5, 0.8, 0.8], atol=0.015)
     assert len(score.observed_faces) == 4
@@ -101,7 +103,7 @@ def test_degenerate_parts_fit_without_crashing(case):
         pts = np.c_[np.linspace(0, 1, 300), np.linspace(0, 0.5, 300), np.full(300, 0.2)]
     else:
         pts = np.repeat([[0.1, 0.2, 0.3], [0.1, 0.2, 0.31]], 100, axis=0)
-    cfg = ReconConfig()
+    cfg = ReconConfig().fitting
     name, prim, score, _ = fit_part(pts, cfg, seed=0)
     assert np.all(prim.size >= cfg.min_thickness - 1e-12) and np.isfinite(score.total)
     if case == "flat":

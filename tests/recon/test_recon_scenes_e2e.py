@@ -49,7 +49,7 @@ def test_joints_match_truth(kitchen):
 def test_every_true_contact_is_found_and_supports_are_right(kitchen):
     rec, truth = kitchen
     for o in truth["objects"]:
-        est = contact_scores(rec.object(o["id"]), rec.config)
+        est = contact_scores(rec.object(o["id"]), rec.config.tree)
         for a, b in o["contacts"]:
             assert (min(a, b), max(a, b)) in est, (o["name"], a, b)
         assert rec.object(o["id"]).supported_by == o["supported_by"], o["name"]

@@ -43,9 +43,9 @@ def _bed(contacts):
 def test_bed_mattress_against_headboard_outranks_a_leg_touching_the_headboard():
     # measured on bedroom seed 0 (clean): both raw Cont ~1.0; the true edge must not tie the false one
     bed = _bed([(1, 2, 1.0), (1, 6, 1.0), (1, 7, 1.0), (6, 7, 1.0), (6, 2, 0.996)])
-    s = contact_scores(bed, CFG)
+    s = contact_scores(bed, CFG.tree)
     assert s[(6, 7)] == pytest.approx(1.0)
-    assert s[(2, 6)] == pytest.approx(0.996 * CFG.foreign_parent_penalty)
+    assert s[(2, 6)] == pytest.approx(0.996 * CFG.tree.foreign_parent_penalty)
     assert s[(6, 7)] > s[(2, 6)]
 
 
@@ -59,7 +59,7 @@ def _legs(skip):
 
 def test_a_hidden_fourth_leg_is_placed_at_the_missing_corner():
     prims, labels, (x, y) = _legs(skip=4)
-    out, placed = complete_missing_legs("bed", prims, labels, (PartPoints(1, 4, "leg", np.zeros((0, 3))),), CFG)
+    out, placed = complete_missing_legs("bed", prims, labels, (PartPoints(1, 4, "leg", np.zeros((0, 3))),), CFG.completion)
     assert set(placed) == {4}
     assert np.allclose(out[4].center, [x, y, 0.075])
     assert np.allclose(out[4].size, [0.06, 0.06, 0.15])
@@ -69,19 +69,19 @@ def test_a_hidden_fourth_leg_is_placed_at_the_missing_corner():
 def test_a_hidden_leg_whose_few_points_lie_elsewhere_is_not_placed():
     prims, labels, (x, y) = _legs(skip=4)
     far = np.array([[x - 0.9, y - 0.6, 0.05]] * 5)              # 1 m from the missing corner
-    out, placed = complete_missing_legs("bed", prims, labels, (PartPoints(1, 4, "leg", far),), CFG)
+    out, placed = complete_missing_legs("bed", prims, labels, (PartPoints(1, 4, "leg", far),), CFG.completion)
     assert placed == {} and set(out) == set(prims)
     near = np.array([[x + 0.01, y - 0.02, 0.05]] * 5)
-    _, placed = complete_missing_legs("bed", prims, labels, (PartPoints(1, 4, "leg", near),), CFG)
+    _, placed = complete_missing_legs("bed", prims, labels, (PartPoints(1, 4, "leg", near),), CFG.completion)
     assert set(placed) == {4}
 
 
 def test_no_leg_is_placed_for_a_cabinet_or_legs_that_span_no_right_angle():
     prims, labels, _ = _legs(skip=4)
     skipped = (PartPoints(1, 4, "leg", np.zeros((0, 3))),)
-    assert complete_missing_legs("cabinet", prims, labels, skipped, CFG)[1] == {}
+    assert complete_missing_legs("cabinet", prims, labels, skipped, CFG.completion)[1] == {}
     prims[5] = Primitive("box", [0.06, 0.06, 0.15], at(0.9, 0.6, 0.075))   # collinear-ish, not a corner
-    assert complete_missing_legs("bed", prims, labels, skipped, CFG)[1] == {}
+    assert complete_missing_legs("bed", prims, labels, skipped, CFG.completion)[1] == {}
 
 
 def test_a_table_top_seen_from_above_keeps_its_rim_thickness():
@@ -97,11 +97,11 @@ def test_a_table_top_seen_from_above_keeps_its_rim_thickness():
     nrm = np.vstack([np.tile([0, 0, 1.0], (n_top, 1)), np.c_[np.sign(rim[:, 0]), np.zeros(n_rim), np.zeros(n_rim)]])
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     raw = Primitive("box", hi - lo, at(*((lo + hi) / 2)))
-    fixed = denoised_box(raw, pts, CFG, nrm)
+    fixed = denoised_box(raw, pts, CFG.fitting, nrm)
     c = fixed.corners()[:, 2]
     assert c.min() == pytest.approx(-t / 2, abs=0.003)          # the rim's bottom is kept
     assert c.max() == pytest.approx(t / 2, abs=0.004)           # the noisy face is pulled in
-    blind = denoised_box(raw, pts, CFG)                         # without normals: both ends pulled
+    blind = denoised_box(raw, pts, CFG.fitting)                         # without normals: both ends pulled
     assert blind.size[2] < fixed.size[2] - 0.01
 
 
@@ -117,9 +117,9 @@ def test_a_handle_bar_is_no_rim_both_ends_of_its_noise_are_pulled_in():
     nrm = np.vstack([np.tile([0, 0, 1.0], (n_top, 1)), np.tile([0, 1.0, 0], (n_front, 1))])
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     raw = Primitive("box", hi - lo, at(*((lo + hi) / 2)))
-    assert denoised_box(raw, pts, CFG, nrm).isclose(denoised_box(raw, pts, CFG))
+    assert denoised_box(raw, pts, CFG.fitting, nrm).isclose(denoised_box(raw, pts, CFG.fitting))
     import dataclasses
-    anywhere = dataclasses.replace(CFG, rim_min_extent=0.0)     # the rule without its size guard
+    anywhere = dataclasses.replace(CFG.fitting, rim_min_extent=0.0)     # the rule without its size guard
     assert not denoised_box(raw, pts, anywhere, nrm).isclose(denoised_box(raw, pts, anywhere))
 
 
@@ -132,7 +132,7 @@ def test_two_hidden_legs_are_placed_from_two_seen_ones_and_the_frame():
         labels = {i: ("frame" if i == 1 else "leg") for i in prims}
         hidden = [i for i in corners if i not in seen]
         skipped = tuple(PartPoints(1, i, "leg", np.array([[*corners[i], 0.05]] * 3)) for i in hidden)
-        out, placed = complete_missing_legs("bed", prims, labels, skipped, CFG, base=1)
+        out, placed = complete_missing_legs("bed", prims, labels, skipped, CFG.completion, base=1)
         assert set(placed) == set(hidden), seen
         for i in hidden:
             assert np.allclose(out[i].center, [*corners[i], 0.075], atol=1e-9), (seen, i)
@@ -144,9 +144,9 @@ def test_a_bed_frame_hidden_at_its_head_end_is_extended_to_its_headboard():
     frame = Primitive("box", [1.48, 1.693, 0.15], at(2.428, 1.325, 0.294))   # random/4 bed15: 26 cm short
     head = Primitive("box", [1.521, 0.05, 1.048], at(2.428, 2.446, 0.527))
     labels = {80: "frame", 85: "headboard"}
-    out, changes = complete_reaching_parts({80: frame, 85: head}, labels, CFG)
+    out, changes = complete_reaching_parts({80: frame, 85: head}, labels, CFG.completion, CFG.contacts)
     assert changes[80] == pytest.approx(2.421 - (1.325 + 1.693 / 2))
     assert out[80].corners()[:, 1].max() == pytest.approx(2.421)
     assert out[80].corners()[:, 1].min() == pytest.approx(1.325 - 1.693 / 2)
     far = Primitive("box", [1.521, 0.05, 1.048], at(2.428, 2.446 + 0.5, 0.527))     # beyond the reach
-    assert complete_reaching_parts({80: frame, 85: far}, labels, CFG)[1] == {}
+    assert complete_reaching_parts({80: frame, 85: far}, labels, CFG.completion, CFG.contacts)[1] == {}

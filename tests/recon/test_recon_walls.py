@@ -23,7 +23,7 @@ def _room(seed=0, noise=0.01):
 
 
 def test_two_walls_are_found_behind_their_planes_facing_the_room():
-    walls = walls_from_background(_room(), np.zeros(3), CFG, seed=0)
+    walls = walls_from_background(_room(), np.zeros(3), CFG.walls, seed=0)
     assert [w.name for w in walls] == ["wall0", "wall1"]
     by_normal = {tuple(np.round(w.T_world_wall[:3, 0]).astype(int)): w for w in walls}
     east, south = by_normal[(-1, 0, 0)], by_normal[(0, 1, 0)]
@@ -41,15 +41,15 @@ def test_two_walls_are_found_behind_their_planes_facing_the_room():
 def test_no_walls_in_a_background_of_floor_only_or_too_few_points():
     rng = np.random.default_rng(1)
     floor = np.c_[rng.uniform(-3, 3, 5000), rng.uniform(-2, 2, 5000), rng.normal(0, 0.005, 5000)]
-    assert walls_from_background(floor, np.zeros(3), CFG) == ()
-    assert walls_from_background(_room()[:50], np.zeros(3), CFG) == ()
+    assert walls_from_background(floor, np.zeros(3), CFG.walls) == ()
+    assert walls_from_background(_room()[:50], np.zeros(3), CFG.walls) == ()
 
 
 def test_walls_are_fixed_boxes_on_world_in_the_urdf_and_round_trip_through_graph_json(kitchen_rec, tmp_path):
     pb = pytest.importorskip("pybullet")
     from recon.graph_json import read_graph_json
 
-    walls = walls_from_background(_room(), np.zeros(3), CFG, seed=0)
+    walls = walls_from_background(_room(), np.zeros(3), CFG.walls, seed=0)
     rec = dataclasses.replace(kitchen_rec, walls=walls)
     write_reconstruction(rec, tmp_path)
     back = read_graph_json(tmp_path / "graph.json")
