@@ -59,7 +59,7 @@ def test_upper_spread_carries_the_template_prior_of_what_no_scan_shows(dense_and
         drawer = next(j for j in rec.joints() if "drawer" in j.name)
         assert drawer.uncertainty.upper >= cfg.drawer_travel_prior
         door = _door(rec)
-        if door.upper >= ReconConfig().door_max_angle - 1e-9:
+        if door.upper >= ReconConfig().joints.door_max_angle - 1e-9:
             assert door.uncertainty.upper >= cfg.door_stop_prior
 
 
