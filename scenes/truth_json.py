@@ -6,11 +6,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .description import TRUTH_FORMAT, DescriptionError, check_truth_format, read_truth_doc, write_truth_doc
+from .description import (TRUTH_FORMAT, DescriptionError, check_truth_format, read_truth_doc, shape_from_truth,
+                          truth_shape_dict, write_truth_doc)
 from .config import DEFAULT_GENERATOR
 from .errors import SceneSpecError
 from .validate import validate_scene
-from .description import Shape, ShapeKind
 from .model import ArticulatedObject, Joint, JointType, Part, Scene, Wall
 
 __all__ = ["TRUTH_FORMAT", "truth_dict_from_scene", "write_truth_json", "scene_from_truth_dict",
@@ -26,18 +26,12 @@ def _v(v) -> list[float]:
     return [float(x) for x in v]
 
 
-def _shape_dict(s: Shape) -> dict:
-    if s.kind is ShapeKind.BOX:
-        return {"type": "box", "size": _v(s.size), "T_part_shape": _m(s.T_link_shape)}
-    return {"type": "cylinder", "radius": s.radius, "length": s.length, "T_part_shape": _m(s.T_link_shape)}
-
-
 def _object_dict(o: ArticulatedObject) -> dict:
     R = o.T_world_object[:3, :3]
     parts = [{"id": p.id, "label": p.label, "link": o.link(p),
               "T_world_part": _m(o.T_world_object @ p.T_object_part),
               "density": p.density,
-              "shapes": [_shape_dict(s) for s in p.shapes]} for p in o.parts]
+              "shapes": [truth_shape_dict(s) for s in p.shapes]} for p in o.parts]
     joints = []
     for j in o.joints:
         joints.append({
@@ -68,14 +62,6 @@ def write_truth_json(scene: Scene, path: str | Path) -> Path:
     return write_truth_doc(truth_dict_from_scene(scene), path)
 
 
-def _shape_from(d: dict) -> Shape:
-    if d["type"] == "box":
-        return Shape.box(d["size"], d["T_part_shape"])
-    if d["type"] == "cylinder":
-        return Shape.cylinder(d["radius"], d["length"], d["T_part_shape"])
-    raise ValueError(f"unknown shape type {d['type']!r}")
-
-
 def scene_from_truth_dict(d: dict, source: str = "truth.json") -> Scene:
     """Inverse of :func:`truth_dict_from_scene` (joint axes/origins back to object frames)."""
     try:
@@ -84,7 +70,7 @@ def scene_from_truth_dict(d: dict, source: str = "truth.json") -> Scene:
         raise SceneSpecError(str(e)) from e
     try:
         return _scene_from(d)
-    except (KeyError, TypeError, ValueError) as e:
+    except (KeyError, TypeError, ValueError, DescriptionError) as e:
         raise SceneSpecError(f"{source}: malformed truth ({type(e).__name__}: {e})") from e
 
 
@@ -94,7 +80,7 @@ def _scene_from(d: dict) -> Scene:
         T_wo = np.array(od["T_world_object"], float)
         T_ow = np.linalg.inv(T_wo)
         parts = tuple(Part(p["id"], p["label"], T_ow @ np.array(p["T_world_part"], float),
-                           tuple(_shape_from(s) for s in p["shapes"]),
+                           tuple(shape_from_truth(s, f"part {p['id']} shape {k}") for k, s in enumerate(p["shapes"])),
                            float(p.get("density", DEFAULT_GENERATOR.densities.default)))
                       for p in od["parts"])
         joints = tuple(Joint(JointType(j["type"]), j["parent_part_id"], j["child_part_id"],

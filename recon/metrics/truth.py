@@ -15,7 +15,7 @@ import numpy as np
 from recon.metrics.errors import TruthFormatError
 from recon.model import JointEstimate, JointType
 from recon.primitive import Primitive, volume_weighted_centre
-from scenes.description import TRUTH_FORMAT, DescriptionError, check_truth_format, read_truth_doc
+from scenes.description import TRUTH_FORMAT, DescriptionError, check_truth_format, read_truth_doc, shape_from_truth
 
 __all__ = ["TRUTH_FORMAT", "TruthPart", "TruthObject", "TruthScene", "read_truth", "truth_from_dict"]
 
@@ -93,23 +93,11 @@ def _field(d: Mapping, key: str, where: str) -> Any:
 
 
 def _shape(shape: Mapping, T_world_part: np.ndarray, where: str) -> Primitive:
-    kind = _field(shape, "type", where)
-    T = T_world_part @ _pose(_field(shape, "T_part_shape", where), f"{where}.T_part_shape")
     try:
-        if kind == "box":
-            size = np.asarray(_field(shape, "size", where), dtype=np.float64)
-        elif kind == "cylinder":
-            r, length = float(_field(shape, "radius", where)), float(_field(shape, "length", where))
-            size = np.array([2 * r, 2 * r, length])
-        elif kind == "sphere":
-            size = np.full(3, 2 * float(_field(shape, "radius", where)))
-        else:
-            raise TruthFormatError(f"{where}: unknown shape type {kind!r} (box, cylinder or sphere)")
-        return Primitive(kind, size, T)
-    except (TypeError, ValueError) as exc:
-        if isinstance(exc, TruthFormatError):
-            raise
-        raise TruthFormatError(f"{where}: bad {kind} shape: {exc}") from exc
+        s = shape_from_truth(shape, where)
+    except DescriptionError as exc:
+        raise TruthFormatError(str(exc)) from exc
+    return Primitive(s.kind, s.size, T_world_part @ s.T_link_shape)
 
 
 def _joint(j: Mapping, part_ids: set, where: str) -> JointEstimate:

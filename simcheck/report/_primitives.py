@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from scenes.description import DescriptionError, parse_link_name, read_urdf
+from scenes.description import DescriptionError, parse_link_name, read_urdf, shape_from_truth
 
 from ._errors import ArtifactError
 
@@ -45,26 +45,6 @@ def _matrix(value, where: str) -> np.ndarray:
     return T
 
 
-def _size_of_shape(shape: dict, where: str) -> tuple[str, np.ndarray]:
-    kind = shape.get("type")
-    if kind == "box":
-        size = np.asarray(shape.get("size"), dtype=float)
-        if size.shape != (3,) or np.any(size <= 0):
-            raise ArtifactError(f"{where}: box size must be 3 positive numbers, got {shape.get('size')}")
-        return kind, size
-    if kind == "cylinder":
-        r, length = float(shape.get("radius", 0)), float(shape.get("length", 0))
-        if r <= 0 or length <= 0:
-            raise ArtifactError(f"{where}: cylinder needs positive radius and length, got {shape}")
-        return kind, np.array([2 * r, 2 * r, length])
-    if kind == "sphere":
-        r = float(shape.get("radius", 0))
-        if r <= 0:
-            raise ArtifactError(f"{where}: sphere needs a positive radius, got {shape}")
-        return kind, np.array([2 * r, 2 * r, 2 * r])
-    raise ArtifactError(f"{where}: unknown shape type {kind!r} (expected box, cylinder or sphere)")
-
-
 def solids_from_truth(truth: dict, source: str = "truth.json") -> list[Solid]:
     """Every shape of every part of every object in a ``partscene.truth/1`` dict (closed state)."""
     solids: list[Solid] = []
@@ -72,10 +52,12 @@ def solids_from_truth(truth: dict, source: str = "truth.json") -> list[Solid]:
         for part in obj.get("parts", []):
             where = f"{source}: object {obj.get('name', obj.get('id'))} part {part.get('link', part.get('id'))}"
             T_world_part = _matrix(part.get("T_world_part"), where + " T_world_part")
-            for shape in part.get("shapes", []):
-                kind, size = _size_of_shape(shape, where)
-                T_part_shape = _matrix(shape.get("T_part_shape", np.eye(4)), where + " T_part_shape")
-                solids.append(Solid(kind, size, T_world_part @ T_part_shape,
+            for k, entry in enumerate(part.get("shapes", [])):
+                try:
+                    shape = shape_from_truth(entry, f"{where} shape {k}")
+                except DescriptionError as exc:
+                    raise ArtifactError(str(exc)) from exc
+                solids.append(Solid(shape.kind.value, shape.size, T_world_part @ shape.T_link_shape,
                                     str(part.get("link", "")), str(part.get("label", ""))))
     return solids
 

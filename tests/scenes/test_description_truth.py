@@ -27,3 +27,31 @@ def test_other_formats_and_broken_files_are_named(tmp_path):
         read_truth_doc(tmp_path / "bad.json")
     with pytest.raises(DescriptionError, match=r"gone.json: cannot read"):
         read_truth_doc(tmp_path / "gone.json")
+
+
+def test_truth_shape_entries_round_trip_with_one_cylinder_convention():
+    import numpy as np
+
+    from scenes.description import Shape, shape_from_truth, truth_shape_dict
+    T = np.eye(4)
+    T[:3, 3] = [0.1, 0.2, 0.3]
+    for s in (Shape.box([0.1, 0.2, 0.3], T), Shape.cylinder(0.05, 0.4, T)):
+        back = shape_from_truth(json.loads(json.dumps(truth_shape_dict(s))), "x")
+        assert back.isclose(s, atol=1e-15)
+    assert truth_shape_dict(Shape.cylinder(0.05, 0.4))["radius"] == pytest.approx(0.05)
+
+
+@pytest.mark.parametrize("entry, message", [
+    ({"type": "cone", "T_part_shape": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]},
+     r"part 7 shape 0: unknown shape type 'cone'"),
+    ({"type": "box", "size": [0.1, -1, 0.1], "T_part_shape": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]},
+     r"part 7 shape 0: bad box shape: sizes must be positive"),
+    ({"type": "cylinder", "radius": 0.1, "T_part_shape": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]},
+     r"bad cylinder shape: KeyError"),
+    ({"type": "box", "size": [1, 1, 1], "T_part_shape": [[1, 0], [0, 1]]}, r"shape 0.T_part_shape: expected a finite 4x4"),
+    ({"type": "box", "size": [1, 1, 1]}, r"missing field 'T_part_shape'"),
+])
+def test_malformed_truth_shapes_are_named(entry, message):
+    from scenes.description import shape_from_truth
+    with pytest.raises(DescriptionError, match=message):
+        shape_from_truth(entry, "truth.json: part 7 shape 0")

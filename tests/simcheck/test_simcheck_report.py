@@ -216,7 +216,7 @@ def test_bad_truth_shape_is_rejected_naming_object_and_part(tmp_path):
     part = obj["parts"][0]
     part["shapes"][0] = {"type": "box", "size": [0.1, -0.2, 0.3], "T_part_shape": np.eye(4).tolist()}
     (demo / "truth" / "truth.json").write_text(json.dumps(truth))
-    with pytest.raises(ArtifactError, match=rf"truth\.json: object {obj['name']} part {part['link']}: box size"):
+    with pytest.raises(ArtifactError, match=rf"truth\.json: object {obj['name']} part {part['link']} shape 0: bad box shape"):
         render_report(demo)
 
 
