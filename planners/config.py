@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["PlannerConfig"]
+__all__ = ["PlannerConfig", "default_amount"]
 
 
 @dataclass(frozen=True)
@@ -90,3 +90,10 @@ class PlannerConfig:
     open_method: str = "auto"
     constrained_time: float = 3.0
     constrained_stands: int = 2
+
+
+def default_amount(kind: str, lower: float, upper: float, cfg: PlannerConfig) -> float:
+    """Default opening (m or rad) of a joint with range ``[lower, upper]``: drawers ``cfg.drawer_fraction`` of
+    the range; doors ``min(cfg.door_fraction`` of it, ``cfg.door_max)``. ``kind``: "drawer" or "door"."""
+    span = upper - lower
+    return cfg.drawer_fraction * span if kind == "drawer" else min(cfg.door_fraction * span, cfg.door_max)

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from scenes.description import InputError, PartsceneError
 
-__all__ = ["PlannerError", "PlannerInputError", "SceneURDFError", "TaskJointError", "HandleNotFoundError",
-           "RobotDescriptionError"]
+__all__ = ["PlannerError", "PlannerInputError", "SceneURDFError", "TaskSpecError", "TaskJointError",
+           "HandleNotFoundError", "RobotDescriptionError"]
 
 
 class PlannerError(PartsceneError):
@@ -27,8 +27,14 @@ class SceneURDFError(PlannerInputError):
     """The scene URDF is missing, unparsable, or inconsistent (names the file and the element)."""
 
 
-class TaskJointError(PlannerInputError):
-    """The task's joint is missing, fixed, or of the wrong type for the task (names file and joint)."""
+class TaskSpecError(PlannerInputError):
+    """A task is malformed (unknown kind, no joint, a non-positive amount, a bad grasp point) or does not fit
+    the scene (names the task, and the file and joint)."""
+
+
+class TaskJointError(TaskSpecError):
+    """The task's joint is missing, fixed, of the wrong type for the task or without a range (names file
+    and joint)."""
 
 
 class HandleNotFoundError(PlannerInputError):

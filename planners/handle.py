@@ -41,7 +41,7 @@ from planners.errors import HandleNotFoundError
 from scenes.description import R_about, SceneModel, Shape, ShapeKind
 from planners.task import OpenTask
 
-__all__ = ["HandleGrasp", "find_handle", "outward_direction"]
+__all__ = ["HandleGrasp", "find_handle", "handle_link", "outward_direction"]
 
 log = logging.getLogger(__name__)
 
@@ -78,6 +78,23 @@ def _fixed_descendants(scene: SceneModel, link: str) -> list[str]:
                 out.append(j.child)
                 stack.append(j.child)
     return out
+
+
+def handle_link(scene: SceneModel, joint: str, preferred: str | None = None) -> str:
+    """The link to grasp to move ``joint``, by the link rules of :func:`find_handle`: ``preferred`` when the
+    scene has it; else the first link fixed below the moving link whose name contains "handle"; else the
+    only link fixed below it; else the moving link itself (whose collision geometry named "*handle*"
+    :func:`find_handle` then grasps). KeyError naming the joint when the scene has no such joint."""
+    if preferred and preferred in scene.links:
+        return preferred
+    if joint not in scene.joints:
+        raise KeyError(f"{scene.path}: no joint {joint!r}")
+    moving = scene.joints[joint].child
+    fixed_below = _fixed_descendants(scene, moving)
+    named = [ln for ln in fixed_below if "handle" in ln.lower()]
+    if named:
+        return named[0]
+    return fixed_below[0] if len(fixed_below) == 1 else moving
 
 
 def outward_direction(scene: SceneModel, joint: str, point_world: np.ndarray, values: dict,
@@ -185,11 +202,9 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
         named = [c for c in cands if "handle" in _name(c)]
         cands = named or cands
     else:
-        named_links = [ln for ln in fixed_below if "handle" in ln.lower()]
-        if named_links:
-            cands, source = [c for ln in named_links[:1] for c in geoms_of(ln)], "handle link"
-        elif len(fixed_below) == 1:
-            cands, source = geoms_of(fixed_below[0]), "fixed child"
+        link = handle_link(scene, task.joint)
+        if link != moving:
+            cands, source = geoms_of(link), "handle link" if "handle" in link.lower() else "fixed child"
         else:
             cands = [c for ln in [moving] + fixed_below for c in geoms_of(ln) if "handle" in _name(c)]
             source = "named geometry"

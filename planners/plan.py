@@ -16,7 +16,7 @@ import time
 
 import numpy as np
 
-from planners.config import PlannerConfig
+from planners.config import PlannerConfig, default_amount
 from planners.errors import PlannerInputError, TaskJointError
 from planners.handle import find_handle
 from planners.ik import solve_ik
@@ -27,10 +27,10 @@ from planners.pin_world import PlanningWorld, RobotKinematics
 from planners.robot import RobotSpec
 from planners.scene_urdf import read_scene_urdf
 from planners.stand import StandPose, find_stand_poses
-from planners.task import OpenTask, PlanResult, PlanStatus, Segment
+from planners.task import OpenTask, PlanResult, PlanStatus, Segment, check_task
 from scenes.description import SceneModel
 
-__all__ = ["plan_open_task", "default_amount", "robot_kinematics"]
+__all__ = ["plan_open_task", "robot_kinematics"]
 
 log = logging.getLogger(__name__)
 
@@ -41,24 +41,11 @@ def robot_kinematics(spec: RobotSpec) -> RobotKinematics:
     return RobotKinematics(spec)
 
 
-def default_amount(kind: str, lower: float, upper: float, cfg: PlannerConfig) -> float:
-    """Default opening: drawers ``drawer_fraction`` of the range; doors min(``door_fraction`` of it, ``door_max``)."""
-    span = upper - lower
-    return cfg.drawer_fraction * span if kind == "drawer" else min(cfg.door_fraction * span, cfg.door_max)
-
-
 def _validate(scene: SceneModel, task: OpenTask, s0: float, cfg: PlannerConfig) -> float:
-    """Check the task against the scene; return the amount to open (m or rad)."""
+    """Check the task against the scene (:func:`planners.task.check_task`); return the amount to open from
+    ``s0`` (m or rad)."""
+    j = check_task(task, scene.joints, scene.path)
     where = f"{scene.path}: joint {task.joint!r}"
-    if task.joint not in scene.joints:
-        movable = sorted(j.name for j in scene.joints.values() if j.movable)
-        raise TaskJointError(f"{where} does not exist (movable joints: {', '.join(movable[:12]) or 'none'})")
-    j = scene.joints[task.joint]
-    want = "prismatic" if task.kind == "drawer" else "revolute"
-    if j.type == "fixed":
-        raise TaskJointError(f"{where} is fixed: nothing to open as a {task.kind}")
-    if j.type != want and not (task.kind == "door" and j.type == "continuous"):
-        raise TaskJointError(f"{where} is {j.type.value}, but a {task.kind} needs a {want} joint")
     lower, upper = j.lower, j.upper
     if not math.isfinite(upper) or not math.isfinite(lower):
         lower, upper = s0, s0 + (cfg.door_max / cfg.door_fraction)

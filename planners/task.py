@@ -1,16 +1,30 @@
-"""What is asked (:class:`OpenTask`) and what comes back (:class:`PlanResult` of :class:`Segment`\\ s)."""
+"""What is asked (:class:`OpenTask`) and what comes back (:class:`PlanResult` of :class:`Segment`\\ s).
+
+The one task type of partscene: the planner plans it, simcheck certifies it, the command lines and
+scenario files write it as ``"open-drawer:JOINT[=AMOUNT][@X,Y,Z]"`` (:func:`parse_task`), and
+:func:`check_task` checks it against a scene's joints. Engine-free.
+"""
 
 from __future__ import annotations
 
 import enum
+import math
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from typing import Protocol
 
 import numpy as np
 
-__all__ = ["OpenTask", "PlanStatus", "Segment", "PlanResult", "SEGMENT_NAMES"]
+from planners.errors import TaskJointError, TaskSpecError
+
+__all__ = ["OpenTask", "PlanStatus", "Segment", "PlanResult", "SEGMENT_NAMES", "KINDS", "parse_task",
+           "parse_tasks", "check_task"]
 
 #: Segment names in execution order.
 SEGMENT_NAMES = ("approach", "grasp", "open", "release", "retreat")
+
+#: task kind -> the joint type it opens (a door also opens a continuous joint)
+KINDS = {"drawer": "prismatic", "door": "revolute"}
 
 
 @dataclass(frozen=True)
@@ -24,12 +38,15 @@ class OpenTask:
     joint : str
         URDF name of the joint to open.
     amount : float or None
-        Target joint value (metres / radians, from the joint's current value). ``None``: drawers 90% of
-        the joint's range; doors ``min(90% of range, 90 deg)``.
+        Target opening (metres / radians, > 0, counted from the joint's current value). ``None``: drawers
+        90% of the joint's range; doors ``min(90% of range, 90 deg)`` (:class:`planners.PlannerConfig`).
     grasp_point : (3,) float or None
         Explicit grasp point (world frame, metres, joint closed) on the moving part.
     grasp_link : str or None
         Explicit handle link (or the moving link itself) to grasp.
+
+    Raises :class:`planners.errors.TaskSpecError` (an input error) naming the task when a field is invalid.
+    ``str(task)`` is its command-line form, ``"open-drawer:JOINT"``.
     """
 
     kind: str
@@ -39,20 +56,128 @@ class OpenTask:
     grasp_link: str | None = None
 
     def __post_init__(self) -> None:
-        if self.kind not in ("drawer", "door"):
-            raise ValueError(f"OpenTask({self.joint!r}): kind must be 'drawer' or 'door', got {self.kind!r}")
+        if self.kind not in KINDS:
+            raise TaskSpecError(f"task {self.kind}:{self.joint}: kind must be one of {sorted(KINDS)} "
+                                f"(written open-drawer:JOINT or open-door:JOINT)")
+        if not self.joint:
+            raise TaskSpecError(f"task {self.action}: names no joint (write {self.action}:JOINT)")
+        if self.amount is not None:
+            try:
+                amount = float(self.amount)
+            except (TypeError, ValueError):
+                amount = math.nan
+            if not (amount > 0 and math.isfinite(amount)):
+                raise TaskSpecError(f"task {self}: amount must be a positive number (m or rad), got {self.amount!r}")
+            object.__setattr__(self, "amount", amount)
         if self.grasp_point is not None:
-            gp = tuple(float(v) for v in np.asarray(self.grasp_point, dtype=float).reshape(-1))
-            if len(gp) != 3:
-                raise ValueError(f"OpenTask({self.joint!r}): grasp_point must be 3 numbers, got {self.grasp_point}")
+            try:
+                gp = tuple(float(v) for v in np.asarray(self.grasp_point, dtype=float).reshape(-1))
+            except (TypeError, ValueError):
+                gp = ()
+            if len(gp) != 3 or not all(math.isfinite(v) for v in gp):
+                raise TaskSpecError(f"task {self}: grasp_point must be 3 numbers X,Y,Z in metres, "
+                                    f"got {self.grasp_point!r}")
             object.__setattr__(self, "grasp_point", gp)
+
+    @property
+    def action(self) -> str:
+        """``"open-drawer"`` or ``"open-door"``: the kind as the command line and certificates write it."""
+        return f"open-{self.kind}"
+
+    def __str__(self) -> str:
+        return f"{self.action}:{self.joint}"
+
+
+def parse_task(text: str | OpenTask, amount: float | None = None) -> OpenTask:
+    """``"open-KIND:JOINT[=AMOUNT][@X,Y,Z]"`` -> :class:`OpenTask`, e.g. ``"open-drawer:cabinet3_drawer12_joint"``,
+    ``"open-door:fridge_door=1.2"`` (rad), ``"open-drawer:d1@1.2,0.3,0.8"`` (explicit grasp point, world
+    frame, m). ``amount`` fills an amount the text does not give; an :class:`OpenTask` is returned as is.
+
+    Raises :class:`planners.errors.TaskSpecError` naming the text and what is wrong.
+    """
+    if isinstance(text, OpenTask):
+        return text
+    action, sep, rest = str(text).partition(":")
+    action, kinds = action.strip(), [f"open-{k}" for k in KINDS]
+    if not sep:
+        raise TaskSpecError(f"task {text!r}: expected KIND:JOINT with KIND in {kinds}")
+    if action not in kinds:
+        raise TaskSpecError(f"task {text!r}: kind must be one of {kinds}")
+    rest, at, point = rest.partition("@")
+    grasp_point = None
+    if at:
+        try:
+            grasp_point = tuple(float(v) for v in point.split(","))
+        except ValueError:
+            grasp_point = ()
+        if len(grasp_point) != 3:
+            raise TaskSpecError(f"task {text!r}: grasp point {point!r} must be X,Y,Z in metres")
+    joint, eq, value = rest.partition("=")
+    if eq:
+        try:
+            amount = float(value)
+        except ValueError:
+            raise TaskSpecError(f"task {text!r}: amount {value!r} is not a number") from None
+    return OpenTask(kind=action[len("open-"):], joint=joint.strip(), amount=amount, grasp_point=grasp_point)
+
+
+def parse_tasks(tasks: Iterable[str | OpenTask], amounts: Iterable[float] | None = None) -> tuple[OpenTask, ...]:
+    """Parse task strings (or keep :class:`OpenTask`\\ s); ``amounts`` (one for all tasks, or one per task,
+    m or rad) fill the amounts the tasks do not give.
+
+    Raises :class:`planners.errors.TaskSpecError`: no task, a malformed task, or a wrong number of amounts.
+    """
+    tasks = list(tasks)
+    if not tasks:
+        raise TaskSpecError("no task given (use --task open-drawer:JOINT or --task open-door:JOINT)")
+    amounts = list(amounts or [])
+    if len(amounts) == 1:
+        amounts = amounts * len(tasks)
+    if amounts and len(amounts) != len(tasks):
+        raise TaskSpecError(f"{len(amounts)} amounts for {len(tasks)} tasks: give one, or one per task")
+    out = []
+    for i, t in enumerate(tasks):
+        task = parse_task(t)
+        if task.amount is None and amounts:
+            task = OpenTask(task.kind, task.joint, amounts[i], task.grasp_point, task.grasp_link)
+        out.append(task)
+    return tuple(out)
+
+
+class _JointLike(Protocol):
+    type: str        # "prismatic", "revolute", "continuous", "fixed", ... (or a str enum of those)
+    lower: float     # m or rad
+    upper: float
+
+    @property
+    def movable(self) -> bool: ...
+
+
+def check_task(task: OpenTask, joints: Mapping[str, _JointLike], source: object) -> _JointLike:
+    """The joint of ``joints`` (name -> joint with ``type``, ``lower``, ``upper``, ``movable``) that ``task``
+    opens, after checking it exists, moves, has the type the task needs and a range (``upper > lower``).
+
+    Raises :class:`planners.errors.TaskJointError` naming ``source`` (the scene file) and the joint.
+    """
+    where = f"{task}: {source}: joint {task.joint!r}"
+    if task.joint not in joints:
+        movable = sorted(n for n, j in joints.items() if j.movable)
+        raise TaskJointError(f"{where} does not exist (movable joints: {', '.join(movable[:12]) or 'none'})")
+    j = joints[task.joint]
+    need, jtype = KINDS[task.kind], str(getattr(j.type, "value", j.type))   # an enum or the URDF string
+    if jtype == "fixed":
+        raise TaskJointError(f"{where} is fixed: nothing to open as a {task.kind}")
+    if jtype != need and not (need == "revolute" and jtype == "continuous"):
+        raise TaskJointError(f"{where} is {jtype}, but a {task.kind} needs a {need} joint")
+    if not j.upper > j.lower:
+        raise TaskJointError(f"{where} has no opening range (lower {j.lower}, upper {j.upper})")
+    return j
 
 
 class PlanStatus(enum.Enum):
     """Outcome of :func:`planners.plan_open_task`."""
 
     OK = "ok"
-    NO_HANDLE = "no_handle"   # kept for the contract; a missing handle raises HandleNotFoundError instead
     NO_STAND_POSE = "no_stand_pose"
     IK_FAILED = "ik_failed"
     NO_PATH = "no_path"
@@ -86,10 +211,18 @@ class Segment:
     gripper: str
 
     def __post_init__(self) -> None:
-        n = len(self.q)
-        if self.object_q.shape != (n,) or self.T_world_tool.shape != (n, 4, 4):
-            raise ValueError(f"Segment {self.name!r}: inconsistent shapes q{self.q.shape} "
-                             f"object_q{self.object_q.shape} T_world_tool{self.T_world_tool.shape}")
+        q = np.atleast_2d(np.asarray(self.q, dtype=float))
+        n = len(q)
+        object_q = np.asarray(self.object_q, dtype=float)
+        T = np.asarray(self.T_world_tool, dtype=float)
+        if object_q.shape != (n,) or T.shape != (n, 4, 4):
+            raise ValueError(f"Segment {self.name!r}: inconsistent shapes q{q.shape} "
+                             f"object_q{object_q.shape} T_world_tool{T.shape}")
+        if self.gripper not in ("open", "closed"):
+            raise ValueError(f"Segment {self.name!r}: gripper must be 'open' or 'closed', got {self.gripper!r}")
+        object.__setattr__(self, "q", q)
+        object.__setattr__(self, "object_q", object_q)
+        object.__setattr__(self, "T_world_tool", T)
 
     def isclose(self, other: "Segment", atol: float = 1e-9) -> bool:
         return (self.name == other.name and self.gripper == other.gripper and self.q.shape == other.q.shape

@@ -17,16 +17,14 @@ Names are imported on first use, so ``import simcheck.report`` or ``simcheck.err
 import lazy_loader
 
 __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
-    "certification": ["certify", "PlanOutcome"],
+    "certification": ["certify"],
     "run": ["run_scenario", "assert_certified"],
     "certificate": ["Certificate", "TaskCertificate", "Outcome", "exit_code"],
-    "tasks": ["Task"],
     "config": ["CriteriaConfig", "PhysicsConfig", "DEFAULT_CRITERIA", "DEFAULT_PHYSICS"],
     "criteria": ["CriterionResult"],
     "rollout": ["Rollout"],
     "world": ["World"],
     "robot_binding": ["SimRobot"],
-    "planned_task": ["PlannedTask", "PlannedSegment"],
     "execute": ["execute_task"],
     "plan_recheck": ["recheck_plan"],
     "robot_spec_file": ["load_robot_spec"],

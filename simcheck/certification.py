@@ -5,8 +5,9 @@ with physics on the scene or on a reference (``against``), judge the rollout, wr
                             seed=0, out="out/")
     assert cert.ok, cert.summary()
 
-Planning is pluggable: ``planner(scene_urdf, task, seed, start, scene_state) -> PlanOutcome``; the
-default calls ``planners.plan_open_task`` with ``planners.default_robot()``.
+Planning is pluggable: ``planner(scene_urdf, task, seed, start, scene_state) -> planners.PlanResult``
+(``task`` a ``planners.OpenTask``); the default calls ``planners.plan_open_task``. The plan is executed
+as the planner returned it.
 """
 
 from __future__ import annotations
@@ -14,12 +15,13 @@ from __future__ import annotations
 import dataclasses
 import logging
 import time
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
 import numpy as np
 
+from planners.config import PlannerConfig
+from planners.task import OpenTask, PlanResult, PlanStatus, check_task, parse_tasks
 from scenes.outcome import Outcome
 from simcheck.certificate import Certificate, TaskCertificate, software_versions
 from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, PhysicsConfig
@@ -29,71 +31,37 @@ from simcheck.estimate_diff import joint_differences
 from simcheck.execute import execute_task, handle_link_for
 from simcheck.keyframes import KeyFrameCamera
 from simcheck.plan_recheck import recheck_plan
-from simcheck.planned_task import PlannedTask, planned_task_from_plan
 from simcheck.robot_binding import SimRobot, sim_robot_from_spec
 from simcheck.rollout import Rollout
 from simcheck.scene_joints import read_scene_joints, scene_link_names
-from simcheck.tasks import Task, check_task, default_amount, parse_tasks
 from simcheck.world import World
 
-__all__ = ["certify", "PlanOutcome", "planners_planner", "Session", "outcome_of_unplanned"]
+__all__ = ["certify", "planners_planner", "Session", "outcome_of_unplanned"]
 
 log = logging.getLogger(__name__)
 
 
 
-def outcome_of_unplanned(plan_status: str) -> Outcome:
-    """The task outcome when the planner returned ``plan_status`` (a ``planners.PlanStatus`` name, not OK):
-    ``unreachable`` when no base pose reaches the handle, ``not_planned`` for every other planning failure."""
-    return Outcome.UNREACHABLE if plan_status == "NO_STAND_POSE" else Outcome.NOT_PLANNED
+def outcome_of_unplanned(status: PlanStatus) -> Outcome:
+    """The task outcome when the planner returned ``status`` (not OK): ``unreachable`` when no base pose
+    reaches the handle, ``not_planned`` for every other planning failure."""
+    return Outcome.UNREACHABLE if status is PlanStatus.NO_STAND_POSE else Outcome.NOT_PLANNED
 
 
-@dataclass(frozen=True)
-class PlanOutcome:
-    """What a planner returned for one task.
+def planners_planner(robot_spec, config: PlannerConfig) -> Callable:
+    """A planner function backed by ``planners.plan_open_task`` with ``robot_spec`` and ``config``; a start
+    configuration in collision is replaced by the planner's own start."""
+    from planners.plan import plan_open_task
 
-    Attributes:
-        status: "OK" or the planner's failure status name ("NO_STAND_POSE", "NO_PATH", ...).
-        reason: the planner's reason (names the joint).
-        plan: the plan to execute when ``status == "OK"``, else None.
-        seconds: planning wall time.
-    """
+    def plan(scene_urdf, task: OpenTask, seed: int, start=None, scene_state=None) -> PlanResult:
+        result = plan_open_task(robot_spec, str(scene_urdf), task, seed=seed, start=start,
+                                scene_state=scene_state, config=config)
+        if start is not None and result.status is PlanStatus.START_IN_COLLISION:
+            result = plan_open_task(robot_spec, str(scene_urdf), task, seed=seed, start=None,
+                                    scene_state=scene_state, config=config)
+        return result
 
-    status: str
-    reason: str
-    plan: PlannedTask | None
-    seconds: float
-
-    @property
-    def ok(self) -> bool:
-        return self.status == "OK" and self.plan is not None
-
-
-def planners_planner(robot_spec=None, config=None) -> Callable:
-    """A planner function backed by ``planners.plan_open_task`` (``robot_spec`` default: default_robot())."""
-    import planners
-
-    spec = robot_spec or planners.default_robot()
-
-    def plan(scene_urdf, task: Task, seed: int, start=None, scene_state=None) -> PlanOutcome:
-        t0 = time.perf_counter()
-        open_task = planners.OpenTask(kind=task.planner_kind, joint=task.joint, amount=task.amount,
-                                      grasp_point=task.grasp_point, grasp_link=task.grasp_link)
-        result = planners.plan_open_task(spec, str(scene_urdf), open_task, seed=seed, start=start,
-                                         scene_state=scene_state, config=config)
-        if start is not None and result.status.name == "START_IN_COLLISION":
-            result = planners.plan_open_task(spec, str(scene_urdf), open_task, seed=seed, start=None,
-                                             scene_state=scene_state, config=config)
-        seconds = time.perf_counter() - t0
-        if not result.ok:
-            return PlanOutcome(result.status.name, result.reason, None, seconds)
-        planned = planned_task_from_plan(result, task.joint)
-        if task.grasp_link:
-            planned = PlannedTask(planned.joint, planned.amount, planned.joint_names, planned.segments,
-                                  task.grasp_link, planned.collision_checks, planned.timings)
-        return PlanOutcome("OK", result.reason, planned, seconds)
-
-    plan.robot_spec = spec
+    plan.robot_spec = robot_spec
     return plan
 
 
@@ -147,7 +115,7 @@ class Session:
             for name, value in state.items():
                 self.plan_world.reset_scene_joint(name, value)
 
-    def run_task(self, task: Task, planner: Callable, seed: int, criteria: CriteriaConfig, out: Path | None,
+    def run_task(self, task: OpenTask, planner: Callable, seed: int, criteria: CriteriaConfig, out: Path | None,
                  images: bool, video: bool, start=None) -> TaskCertificate:
         """Plan, re-check, execute and judge one task (the worlds are left in their end state)."""
         t_all = time.perf_counter()
@@ -155,27 +123,25 @@ class Session:
         est = self.scene_joints[task.joint]
         state = self.exec_state()
         self.sync_plan_world(state)
-        outcome = planner(self.scene, task, seed, start, state)
-        timings = {"plan": outcome.seconds}
-        if outcome.plan is not None:
-            timings["plan_collision_checks"] = outcome.plan.collision_checks
-            timings.update({f"planner_{k}": float(v) for k, v in outcome.plan.timings.items()})
+        t = time.perf_counter()
+        plan = planner(self.scene, task, seed, start, state)
+        timings = {"plan": time.perf_counter() - t, "plan_collision_checks": plan.collision_checks}
+        timings.update({f"planner_{k}": float(v) for k, v in plan.timings.items()})
         unit = est.unit
-        if not outcome.ok:
-            amount = task.amount if task.amount is not None else default_amount(task.kind, est, state.get(task.joint, 0.0))
+        if not plan.ok:
             timings["total"] = time.perf_counter() - t_all
-            reason = f"not planned ({outcome.status}): {outcome.reason}"
+            reason = f"not planned ({plan.status.name}): {plan.reason}"
             hints = joint_differences(est, self.ref_joints.get(task.joint)) if self.against is not None else []
             if hints:
                 reason += " -- estimate vs reference: " + "; ".join(hints)
-            return TaskCertificate(task.kind, task.joint, outcome_of_unplanned(outcome.status), reason, float(amount),
-                                   unit, (plan_found(False, outcome.reason),), seed, timings, plan_status=outcome.status)
-        plan = outcome.plan
+            return TaskCertificate(task.action, task.joint, outcome_of_unplanned(plan.status), reason,
+                                   float(plan.amount), unit, (plan_found(False, plan.reason),), seed, timings,
+                                   plan_status=plan.status.name)
         t = time.perf_counter()
         check = recheck_plan(self.plan_world, plan, criteria)
         timings["recheck"] = time.perf_counter() - t
         timings["recheck_states"] = check.n_states
-        crit: list[CriterionResult] = [plan_found(True, outcome.reason),
+        crit: list[CriterionResult] = [plan_found(True, plan.reason),
                                        plan_collision_free(check.max_depth, check.detail, criteria)]
         ref = self.ref_joints.get(task.joint)
         if ref is None or ref.type not in ("prismatic", "revolute"):
@@ -223,12 +189,9 @@ class Session:
                           - {rollout.handle_link})
         return self._judged(task, plan, crit, timings, seed, unit, rel_rollout, rel_images, est, ref, blockers)
 
-    def _robot_side(self, plan: PlannedTask) -> np.ndarray:
+    def _robot_side(self, plan: PlanResult) -> np.ndarray:
         """Where the robot starts (its first tool position): the camera looks from that side."""
-        seg = plan.segments[0]
-        if seg.T_world_tool is not None:
-            return seg.T_world_tool[0][:3, 3]
-        return np.array([1.0, 0.0, 0.0])
+        return plan.segments[0].T_world_tool[0][:3, 3]
 
     def _judged(self, task, plan, crit, timings, seed, unit, rollout, images, est, ref, blockers=()) -> TaskCertificate:
         failed = [c for c in crit if not c.passed]
@@ -248,7 +211,7 @@ class Session:
                           for b in blockers if b not in self.scene_links]
             hints += [f"scene link {b} blocked {task.joint}" for b in blockers if b in self.scene_links]
             reason = (f"{'; '.join(hints)} -- evidence: {evidence}" if hints else evidence)
-        return TaskCertificate(task.kind, task.joint, status, reason, float(plan.amount), unit, tuple(crit), seed,
+        return TaskCertificate(task.action, task.joint, status, reason, float(plan.amount), unit, tuple(crit), seed,
                                timings, rollout or "", tuple(images), plan_status="OK")
 
 
@@ -256,7 +219,7 @@ def _safe(name: str) -> str:
     return "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in name)
 
 
-def _run_task(session: Session, task: Task, planner: Callable, seed: int, criteria: CriteriaConfig,
+def _run_task(session: Session, task: OpenTask, planner: Callable, seed: int, criteria: CriteriaConfig,
               out_dir: Path | None, images: bool, video: bool, start, load_seconds: float | None) -> TaskCertificate:
     """Certify ``task`` in ``session``'s worlds as they are now; the certificate records the start state
     (the executed scene's joints, the robot's configuration: see :class:`TaskCertificate`) and, when the
@@ -275,18 +238,21 @@ def _run_task(session: Session, task: Task, planner: Callable, seed: int, criter
 
 def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, planner: Callable | None = None,
             amounts=None, criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
-            images: bool = True, video: bool = False, gui: bool = False, carry_state: bool = False,
-            robust: int | None = None, min_success: float = 0.9, replay_sample: int | None = None) -> Certificate:
+            planner_config: PlannerConfig = PlannerConfig(), images: bool = True, video: bool = False,
+            gui: bool = False, carry_state: bool = False, robust: int | None = None, min_success: float = 0.9,
+            replay_sample: int | None = None) -> Certificate:
     """Certify each task on ``scene``; returns the :class:`Certificate` (written to ``out`` if given).
 
     Args:
         scene: the scene URDF to plan on (an estimate, or a truth).
-        tasks: task strings ("open-drawer:JOINT", "open-door:JOINT", optionally "=AMOUNT") or :class:`Task`.
+        tasks: task strings ("open-drawer:JOINT", "open-door:JOINT", optionally "=AMOUNT", see
+            ``planners.parse_task``) or ``planners.OpenTask``.
         against: a reference URDF to execute on instead of ``scene`` (joints matched by name).
         seed: planning seed (physics is deterministic).
         out: folder for certificate.json, rollouts/ and images/ (None: nothing written).
         robot: a ``planners.RobotSpec`` (or :class:`SimRobot` together with ``planner``); default robot if None.
-        planner: ``planner(scene, task, seed, start, scene_state) -> PlanOutcome``; default planners'.
+        planner: ``planner(scene, task, seed, start, scene_state) -> planners.PlanResult``; default planners'.
+        planner_config: the default planner's parameters (unused with ``planner``).
         amounts: one amount for all tasks or one per task (m or rad), for tasks without one.
         carry_state: run the tasks one after the other in one world, its state carried from task to task
             (a scenario); by default each task is judged in freshly loaded worlds.
@@ -295,30 +261,32 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
             ``min_success`` (:mod:`simcheck.robust`). ``replay_sample``: run only that sample.
 
     Raises:
-        SimcheckInputError (SceneLoadError, TaskSpecError, RobotBindingError): unusable input, naming
-            the file and joint; ``planners.PlannerInputError`` likewise.
+        SimcheckInputError (SceneLoadError, RobotBindingError) and ``planners.PlannerInputError``
+            (TaskSpecError, HandleNotFoundError, ...): unusable input, naming the file and joint.
     """
     if robust is not None or replay_sample is not None:
         from simcheck.robust import certify_robustly
         return certify_robustly(certify, scene, tasks, robust=robust, min_success=min_success,
                                 replay_sample=replay_sample, against=against, seed=seed, out=out, robot=robot,
-                                planner=planner, amounts=amounts, criteria=criteria, physics=physics, images=images,
-                                video=video, gui=gui)
+                                planner=planner, amounts=amounts, criteria=criteria, physics=physics,
+                                planner_config=planner_config, images=images, video=video, gui=gui)
     t0 = time.perf_counter()
     scene = Path(scene)
     against = Path(against) if against is not None else None
     parsed = parse_tasks(tasks, amounts)
     joints = read_scene_joints(scene)
     for task in parsed:
-        check_task(task, scene, joints)
+        check_task(task, joints, scene)
     if against is not None:
         read_scene_joints(against)
     if planner is None:
         if isinstance(robot, SimRobot):
             raise RobotBindingError(f"certify: robot {robot.urdf} is a SimRobot; the default planner needs a "
                                     "planners.RobotSpec (or pass planner=...)")
-        planner = planners_planner(robot)
-        robot = planner.robot_spec
+        if robot is None:
+            from planners.robot import default_robot
+            robot = default_robot()
+        planner = planners_planner(robot, planner_config)
     if robot is None:
         raise ValueError("certify: a custom planner needs its robot (robot=...)")
     sim_robot = sim_robot_from_spec(robot)

@@ -238,15 +238,15 @@ def _stage_metrics(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
 def usable_tasks(choice: TaskChoice, scene_urdf: Path) -> TaskChoice:
     """``choice`` without the tasks simcheck would reject as input on ``scene_urdf`` (a joint with no
     opening range, or of the wrong type for the task), each named with simcheck's reason in ``reason``."""
-    parse_task = _api("simcheck.tasks", "parse_task")
-    check_task = _api("simcheck.tasks", "check_task")
+    parse_task = _api("planners.task", "parse_task")
+    check_task = _api("planners.task", "check_task")
     read_scene_joints = _api("simcheck.scene_joints", "read_scene_joints")
-    input_error = _api("simcheck.errors", "TaskSpecError")
+    input_error = _api("planners.errors", "TaskSpecError")
     joints = read_scene_joints(scene_urdf)
     kept, left_out = [], [choice.reason] if choice.reason else []
     for kind, joint in choice.tasks:
         try:
-            check_task(parse_task(f"{kind}:{joint}"), scene_urdf, joints)
+            check_task(parse_task(f"{kind}:{joint}"), joints, scene_urdf)
             kept.append((kind, joint))
         except input_error as exc:
             left_out.append(f"{joint} (rejected: {exc})")

@@ -3,12 +3,14 @@
 Expected outcomes (a task that fails certification, a plan that was not found) are never raised: they
 are :class:`simcheck.TaskCertificate` entries with a :class:`scenes.outcome.Outcome` and a reason. The
 exceptions below are for input that cannot be certified at all; every message names the file and the
-joint, link or field. The CLI maps :class:`SimcheckInputError` (and ``planners.PlannerInputError``) to
-exit code 2.
+joint, link or field. Every input error (:class:`SimcheckInputError`, ``planners.PlannerInputError``) is a
+``scenes.description.InputError``: exit code 2, outcome ``unusable``. A malformed task, or one whose joint does not fit the scene, raises the planner's
+``TaskSpecError`` (re-exported here; tasks are ``planners.OpenTask``).
 """
 
 from __future__ import annotations
 
+from planners.errors import TaskSpecError
 from scenes.description import InputError, PartsceneError
 
 __all__ = ["SimcheckError", "SimcheckInputError", "SceneLoadError", "TaskSpecError", "RobotBindingError",
@@ -25,10 +27,6 @@ class SimcheckInputError(SimcheckError, InputError):
 
 class SceneLoadError(SimcheckInputError):
     """A scene URDF is missing, unparsable or rejected by PyBullet (names the file)."""
-
-
-class TaskSpecError(SimcheckInputError):
-    """A task names a missing joint, a fixed joint, or a joint of the wrong type (names file and joint)."""
 
 
 class RobotBindingError(SimcheckInputError):

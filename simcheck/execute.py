@@ -36,15 +36,19 @@ from collections import defaultdict
 
 import numpy as np
 
+from planners.handle import handle_link
+from planners.scene_urdf import read_scene_urdf
+from planners.task import SEGMENT_NAMES, PlanResult, Segment
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
 from simcheck.grasp import grasp_formation
-from simcheck.planned_task import GRASP, OPEN, RELEASE, PlannedSegment, PlannedTask
 from simcheck.rollout import Rollout
 from simcheck.world import World
 
 __all__ = ["execute_task", "handle_link_for", "moving_link_for", "timed_waypoints"]
 
 log = logging.getLogger(__name__)
+
+_, GRASP, OPEN, RELEASE, _ = SEGMENT_NAMES
 
 
 def moving_link_for(world: World, joint: str) -> str:
@@ -53,21 +57,11 @@ def moving_link_for(world: World, joint: str) -> str:
 
 
 def handle_link_for(world: World, joint: str, preferred: str | None = None) -> str:
-    """The link to grasp to move ``joint``: ``preferred`` if the scene has it; else a descendant of the
-    joint's moving link rigidly fixed to it whose name says "handle"; else the moving link itself
-    (a handle modelled as geometry inside the drawer/door link)."""
+    """The scene link to grasp to move ``joint`` of ``world``'s scene: ``preferred`` (the plan's grasp link)
+    when the scene has it, else the planner's rule (:func:`planners.handle.handle_link`) on the world's URDF."""
     if preferred and world.has_scene_link(preferred):
         return preferred
-    moving = moving_link_for(world, joint)
-    frontier = [moving]
-    while frontier:
-        parent = frontier.pop()
-        for info in world.scene_joints():
-            if info.parent_link == parent and info.type == "fixed":
-                if "handle" in info.child_link.lower():
-                    return info.child_link
-                frontier.append(info.child_link)
-    return moving
+    return handle_link(read_scene_urdf(world.scene_urdf), joint)
 
 
 def timed_waypoints(q: np.ndarray, vmax: np.ndarray, min_dt: float) -> np.ndarray:
@@ -193,17 +187,17 @@ def _step(world: World, rec: _Recorder, n: int, on_step=None) -> None:
             on_step()
 
 
-def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAULT_PHYSICS, *,
+def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT_PHYSICS, *,
                  requested_amount: float | None = None, reset_robot: bool = True,
                  frame_callback=None, sample_callback=None, opening_type: str = "",
                  opening_axis: np.ndarray | None = None) -> Rollout:
-    """Execute ``task`` in ``world`` with physics and return the recorded :class:`Rollout`.
+    """Execute ``plan`` in ``world`` with physics and return the recorded :class:`Rollout`.
 
     Args:
         world: a world holding the scene the plan is executed on (the estimate, or the reference with
             ``--against``) and the robot. Its scene joints are never reset here.
-        task: the plan. ``task.joint_names`` must be the world robot's ``joint_names``.
-        requested_amount: the opening asked for, m or rad (default ``task.amount``).
+        plan: the planner's plan (status OK). ``plan.joint_names`` must be the world robot's ``joint_names``.
+        requested_amount: the opening asked for, m or rad (default ``plan.amount``).
         opening_type, opening_axis: the planned joint's type ("prismatic"/"revolute") and (3,) world axis
             toward which it opens: the opening is measured along it (see ``Rollout.opening_axis``).
         reset_robot: place the robot at the plan's first configuration first (the robot's start state;
@@ -214,12 +208,12 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
     """
     t0 = time.perf_counter()
     robot = world.robot_spec
-    if tuple(task.joint_names) != tuple(robot.joint_names):
-        raise ValueError(f"plan for joint {task.joint!r} has robot joints {task.joint_names}, the world's robot "
+    joint = plan.task.joint
+    if tuple(plan.joint_names) != tuple(robot.joint_names):
+        raise ValueError(f"plan for joint {joint!r} has robot joints {plan.joint_names}, the world's robot "
                          f"has {robot.joint_names}")
-    joint = task.joint
     moving = moving_link_for(world, joint)
-    handle = handle_link_for(world, joint, task.grasp_link)
+    handle = handle_link_for(world, joint, plan.grasp_link)
     rec = _Recorder(world, joint, moving, handle, config)
     rec.sample_callback = sample_callback
     q0_obj = world.scene_joint_state(joint)[0]
@@ -228,7 +222,7 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
                     config.max_joint_speed)
     notes: list[str] = []
     if reset_robot:
-        world.reset_robot(task.segments[0].q[0], fingers_open=True)
+        world.reset_robot(plan.segments[0].q[0], fingers_open=True)
     fingers_open = True
     snap = frame_callback or (lambda label: None)
     snap("start")
@@ -276,8 +270,8 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
         else:
             notes.append(f"no grasp: {formed.reason}")
 
-    hold = task.segments[0].q[0]
-    for i, seg in enumerate(task.segments):
+    hold = plan.segments[0].q[0]
+    for i, seg in enumerate(plan.segments):
         rec.segment = i
         want_open = seg.gripper == "open"
         if want_open and not fingers_open or seg.name == RELEASE and not fingers_open:
@@ -303,9 +297,9 @@ def execute_task(world: World, task: PlannedTask, config: PhysicsConfig = DEFAUL
     orows = rec.obj_rows
     return Rollout(
         joint=joint, moving_link=moving, handle_link=handle, robot_joint_names=tuple(robot.joint_names),
-        segment_names=tuple(s.name for s in task.segments),
+        segment_names=tuple(s.name for s in plan.segments),
         gripper_links=tuple(dict.fromkeys(robot.gripper_links + robot.finger_links + (robot.tool_link,))),
-        requested_amount=float(task.amount if requested_amount is None else requested_amount),
+        requested_amount=float(plan.amount if requested_amount is None else requested_amount),
         object_q0=float(q0_obj), grasp_note="; ".join(notes), time_step=config.time_step,
         t=np.asarray(rows["t"]), segment=np.asarray(rows["segment"], dtype=int),
         robot_q=np.asarray(rows["robot_q"]), robot_lower=lo, robot_upper=hi,
@@ -346,7 +340,7 @@ def _ramped(t: np.ndarray, duration: float, ramp: float) -> tuple[np.ndarray, np
     return u, rate
 
 
-def _targets(seg: PlannedSegment, vmax: np.ndarray, config: PhysicsConfig):
+def _targets(seg: Segment, vmax: np.ndarray, config: PhysicsConfig):
     """Every control step's robot target along ``seg``: (step numbers k (m,), q (m, dof), qd (m, dof),
     planned tool position (m, 3) or None, planned object q (m,) or None), and the step count.
 
@@ -376,7 +370,7 @@ def _targets(seg: PlannedSegment, vmax: np.ndarray, config: PhysicsConfig):
     return k, q, qd, tool_k, obj_k, n_steps
 
 
-def _follow(world: World, rec: _Recorder, seg: PlannedSegment, vmax: np.ndarray, config: PhysicsConfig,
+def _follow(world: World, rec: _Recorder, seg: Segment, vmax: np.ndarray, config: PhysicsConfig,
             on_step) -> np.ndarray:
     """Drive the robot along ``seg`` (time-parametrised), then hold ``settle_time``; returns the last q."""
     ks, q, qd, tool_k, obj_k, n_steps = _targets(seg, vmax, config)

@@ -15,9 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from planners.task import PlanResult
 from simcheck.config import DEFAULT_CRITERIA, CriteriaConfig
 from simcheck.execute import handle_link_for
-from simcheck.planned_task import PlannedTask
 from simcheck.world import World
 
 __all__ = ["PlanCheck", "recheck_plan", "densify"]
@@ -65,19 +65,20 @@ def densify(q: np.ndarray, resolution: float, *extra: np.ndarray | None) -> tupl
     return (out_q,) + tuple(outs)
 
 
-def recheck_plan(world: World, task: PlannedTask, criteria: CriteriaConfig = DEFAULT_CRITERIA) -> PlanCheck:
-    """Re-check every densely interpolated state of ``task`` for robot-scene collisions in ``world``
+def recheck_plan(world: World, plan: PlanResult, criteria: CriteriaConfig = DEFAULT_CRITERIA) -> PlanCheck:
+    """Re-check every densely interpolated state of ``plan`` for robot-scene collisions in ``world``
     (the scene the plan was made for). The world's state is restored afterwards."""
     t0 = time.perf_counter()
-    handle = handle_link_for(world, task.joint, task.grasp_link)
-    q_obj_now = world.scene_joint_state(task.joint)[0]
+    joint = plan.task.joint
+    handle = handle_link_for(world, joint, plan.grasp_link)
+    q_obj_now = world.scene_joint_state(joint)[0]
     worst, detail, n = 0.0, "", 0
     with world.saved_state():
-        for seg in task.segments:
+        for seg in plan.segments:
             q, obj = densify(seg.q, criteria.recheck_resolution, seg.object_q)
             for i in range(len(q)):
                 value = float(obj[i]) if obj is not None else q_obj_now
-                contacts = world.collisions_at(q[i], seg.gripper == "open", {task.joint: value},
+                contacts = world.collisions_at(q[i], seg.gripper == "open", {joint: value},
                                                criteria.plan_penetration_tolerance * 0.0)
                 n += 1
                 for c in contacts:

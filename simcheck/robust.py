@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from planners.task import parse_tasks
 from scenes.outcome import Outcome
 from simcheck.perturbations import Perturbation, sample_perturbation
 from simcheck.perturbed_scene import write_perturbed_scene
@@ -34,7 +35,6 @@ from simcheck.robust_spreads import (DEFAULT_PHYSICS_RANGES, DEFAULT_ROBOT_ERROR
                                      joint_spreads_for, spreads_dict)
 from simcheck.robust_verdict import CONFIDENCE, SampleResult, robust_block, robust_outcome
 from simcheck.scene_joints import read_scene_joints
-from simcheck.tasks import parse_tasks
 
 __all__ = ["certify_robustly", "run_sample"]
 
@@ -49,9 +49,9 @@ class _PlanKeeper:
         self.robot_spec = getattr(planner, "robot_spec", None)
 
     def __call__(self, scene, task, seed, start=None, state=None):
-        outcome = self.planner(scene, task, seed, start, state)
-        self.plans[task.joint] = outcome.plan if outcome.ok else None
-        return outcome
+        plan = self.planner(scene, task, seed, start, state)
+        self.plans[task.joint] = plan if plan.ok else None
+        return plan
 
 
 def _pivot_xy(plan) -> tuple[float, float]:
@@ -82,13 +82,13 @@ def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics
                 from simcheck.execute import handle_link_for
                 from simcheck.keyframes import KeyFrameCamera
 
-                handle = handle_link_for(world, plan.joint, plan.grasp_link)
+                handle = handle_link_for(world, plan.task.joint, plan.grasp_link)
                 camera = KeyFrameCamera(world, world.scene_link_pose(handle)[:3, 3], np.array([*pivot, 1.0]),
                                         Path(out) / "images", f"sample{p.index}", video=video)
             rollout = execute_task(world, plan, phys, requested_amount=requested,
                                    frame_callback=camera.snap if camera else None)
             if out is not None:
-                rollout.save(Path(out) / "rollouts" / f"{plan.joint}_sample{p.index}.npz")
+                rollout.save(Path(out) / "rollouts" / f"{plan.task.joint}_sample{p.index}.npz")
                 if camera is not None and video:
                     camera.save_video()
     except Exception as exc:       # a world that cannot be built or run is a failed sample, said why
@@ -113,8 +113,8 @@ def _run_sample_args(args) -> SampleResult:
 
 
 def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, replay_sample: int | None,
-                     against, seed: int, out, robot, planner, amounts, criteria, physics, images: bool,
-                     video: bool, gui: bool, workers: int | None = None):
+                     against, seed: int, out, robot, planner, amounts, criteria, physics, planner_config,
+                     images: bool, video: bool, gui: bool, workers: int | None = None):
     """:func:`simcheck.certification.certify` with ``robust`` sampled worlds per task (module docstring).
 
     certify : the plain certify function (called once, for the nominal run). Raises SimcheckInputError
@@ -135,8 +135,10 @@ def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, 
             spreads[task.joint] = joint_spreads_for(scene, task.joint, sj.type)
     if planner is None:
         from simcheck.certification import planners_planner
-        planner = planners_planner(robot)
-        robot = planner.robot_spec
+        if robot is None:
+            from planners.robot import default_robot
+            robot = default_robot()
+        planner = planners_planner(robot, planner_config)
     keeper = _PlanKeeper(planner)
     nominal = certify(scene, tasks, against=against, seed=seed, out=out, robot=robot, planner=keeper,
                       amounts=amounts, criteria=criteria, physics=physics, images=images and replay_sample is None,

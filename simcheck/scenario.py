@@ -17,8 +17,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from planners.task import OpenTask, parse_task
 from simcheck.errors import ScenarioError
-from simcheck.tasks import Task, parse_task
 
 __all__ = ["Scenario", "load_scenario"]
 
@@ -32,10 +32,10 @@ class Scenario:
     against: Path | None
     robot: str
     seed: int
-    tasks: tuple[Task, ...]
+    tasks: tuple[OpenTask, ...]
 
 
-def _task(entry, path: Path, i: int) -> Task:
+def _task(entry, path: Path, i: int) -> OpenTask:
     if isinstance(entry, str):
         return parse_task(entry)
     if isinstance(entry, dict):
@@ -46,10 +46,8 @@ def _task(entry, path: Path, i: int) -> Task:
             joint = entry[kind]
         else:
             raise ScenarioError(f"{path}: tasks[{i}] needs 'kind' and 'joint' (or 'open-drawer: JOINT'), got {entry}")
-        gp = entry.get("grasp_point")
-        return Task(kind=str(kind), joint=str(joint), amount=entry.get("amount"),
-                    grasp_point=tuple(float(v) for v in gp) if gp is not None else None,
-                    grasp_link=entry.get("grasp_link"))
+        task = parse_task(f"{kind}:{joint}")
+        return OpenTask(task.kind, task.joint, entry.get("amount"), entry.get("grasp_point"), entry.get("grasp_link"))
     raise ScenarioError(f"{path}: tasks[{i}] must be a string or a mapping, got {type(entry).__name__}")
 
 

@@ -18,7 +18,7 @@ PURE = ("scenes", "recon", "planners", "simcheck",
         "recon.contacts", "recon.part_tree", "recon.joints", "recon.scene_urdf", "recon.metrics",
         "planners.task", "planners.config", "planners.errors", "planners.scene_urdf", "planners.robot",
         "planners.handle",
-        "simcheck.tasks", "simcheck.criteria", "simcheck.certificate", "simcheck.config", "simcheck.errors",
+        "simcheck.criteria", "simcheck.certificate", "simcheck.config", "simcheck.errors",
         "simcheck.scene_joints", "simcheck.rollout", "simcheck.estimate_diff", "simcheck.scenario")
 #: modules that exist once the shared scene description has landed
 LATER = ()

@@ -241,7 +241,8 @@ def _tasks(value, fail) -> tuple[str, ...] | None:
 
 def _check_tasks(scene: Path, tasks: tuple[str, ...], amount, fail) -> None:
     from simcheck.scene_joints import read_scene_joints
-    from simcheck.tasks import check_task, parse_task
+    from planners.task import check_task, parse_task
+    from scenes.description import InputError
 
     try:
         joints = read_scene_joints(scene)
@@ -249,6 +250,6 @@ def _check_tasks(scene: Path, tasks: tuple[str, ...], amount, fail) -> None:
         raise fail("scene", str(exc)) from exc
     for text in tasks:
         try:
-            check_task(parse_task(text, amount), scene, joints)
-        except SimcheckInputError as exc:
+            check_task(parse_task(text, amount), joints, scene)
+        except InputError as exc:
             raise fail("tasks", str(exc)) from exc

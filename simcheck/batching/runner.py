@@ -107,7 +107,7 @@ def _scan_tasks(entry: Entry, scene: Path) -> tuple[list[str], dict[str, str]]:
     ``tasks: all-movable`` means every movable joint of the reconstruction, plus, with a ``truth``,
     every movable joint of the truth that the reconstruction lacks."""
     from simcheck.scene_joints import read_scene_joints
-    from simcheck.tasks import KINDS
+    from planners.task import KINDS
 
     joints = read_scene_joints(scene)
     have = {t.split(":", 1)[1]: t for t in _movable_tasks(scene)}
@@ -122,7 +122,7 @@ def _scan_tasks(entry: Entry, scene: Path) -> tuple[list[str], dict[str, str]]:
         kind, _, rest = task.partition(":")
         joint = rest.split("=", 1)[0].split("@", 1)[0]
         j = joints.get(joint)
-        if j is None or j.type != KINDS.get(kind, ("", ""))[1]:
+        if j is None or j.type != KINDS.get(kind.removeprefix("open-")):
             what = "no joint" if j is None else f"a {j.type} joint"
             missing[task] = f"the reconstruction of {entry.name} has {what} {joint!r}: {kind} cannot be certified"
     return wanted, missing

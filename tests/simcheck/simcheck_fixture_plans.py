@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from simcheck.planned_task import PlannedSegment, PlannedTask
+from planners.task import OpenTask, PlanResult, PlanStatus, Segment
 from simcheck.robot_binding import SimRobot
 
 DATA = Path(__file__).parent / "data"
@@ -35,16 +35,22 @@ def _tool_poses(q: np.ndarray) -> np.ndarray:
     return T
 
 
-def _seg(name, q, gripper, object_q=None):
-    q = np.asarray(q, dtype=float)
-    return PlannedSegment(name, q, gripper, None if object_q is None else np.asarray(object_q, float), _tool_poses(q))
+def _seg(name, q, gripper, object_q):
+    """A :class:`planners.Segment`; ``object_q`` one planned drawer/door value for every sample, or (n,)."""
+    q = np.atleast_2d(np.asarray(q, dtype=float))
+    return Segment(name, q, np.broadcast_to(np.asarray(object_q, float), len(q)), _tool_poses(q), gripper)
+
+
+def _plan(kind: str, joint: str, amount: float, segments) -> PlanResult:
+    return PlanResult(PlanStatus.OK, f"hand-made plan for {joint}", OpenTask(kind, joint, amount), ROBOT.joint_names,
+                      tuple(segments), amount=amount)
 
 
 def line(a, b, n):
     return np.linspace(np.asarray(a, float), np.asarray(b, float), n)
 
 
-def drawer_plan(amount: float = 0.3, axis_deg: float = 0.0, handle=(0.29, 0.0, 0.68)) -> PlannedTask:
+def drawer_plan(amount: float = 0.3, axis_deg: float = 0.0, handle=(0.29, 0.0, 0.68)) -> PlanResult:
     """Pull the fixture drawer by ``amount`` m along +x rotated by ``axis_deg`` about z (0 = correct)."""
     hx, hy, hz = handle
     grasp = np.array([hx + TOOL_OFFSET, hy, hz, 0.0])
@@ -54,16 +60,16 @@ def drawer_plan(amount: float = 0.3, axis_deg: float = 0.0, handle=(0.29, 0.0, 0
     s = np.linspace(0.0, amount, 31)
     opened = grasp[None, :] + np.stack([s * np.cos(a), s * np.sin(a), 0 * s, 0 * s], axis=1)
     back = opened[-1] + [0.12, 0.0, 0.0, 0.0]
-    return PlannedTask(joint=DRAWER, amount=amount, joint_names=ROBOT.joint_names, segments=(
-        _seg("approach", line(start, pre, 10), "open"),
-        _seg("grasp", line(pre, grasp, 6), "closed", np.zeros(6)),
+    return _plan("drawer", DRAWER, amount, (
+        _seg("approach", line(start, pre, 10), "open", 0.0),
+        _seg("grasp", line(pre, grasp, 6), "closed", 0.0),
         _seg("open", opened, "closed", s),
-        _seg("release", opened[-1:], "open", [amount]),
-        _seg("retreat", line(opened[-1], back, 6), "open")))
+        _seg("release", opened[-1:], "open", amount),
+        _seg("retreat", line(opened[-1], back, 6), "open", amount)))
 
 
 def door_plan(amount: float = 1.2, hinge=(0.25, -0.28), radius_xy=(0.06, 0.48), z: float = 0.25,
-              sign: float = -1.0) -> PlannedTask:
+              sign: float = -1.0) -> PlanResult:
     """Swing the fixture door about a vertical hinge at ``hinge`` (x, y) by ``amount`` rad.
 
     The handle sits at ``radius_xy`` in the door frame; ``sign`` is the hinge axis z component (-1: the
@@ -83,21 +89,22 @@ def door_plan(amount: float = 1.2, hinge=(0.25, -0.28), radius_xy=(0.06, 0.48), 
     pre = grasp + [0.12, 0.0, 0.0, 0.0]
     end = q_open[-1]
     back = end + [0.12 * nx[-1], 0.12 * ny[-1], 0.0, 0.0]
-    return PlannedTask(joint=DOOR, amount=amount, joint_names=ROBOT.joint_names, segments=(
-        _seg("approach", line(start, pre, 10), "open"),
-        _seg("grasp", line(pre, grasp, 6), "closed", np.zeros(6)),
+    return _plan("door", DOOR, amount, (
+        _seg("approach", line(start, pre, 10), "open", 0.0),
+        _seg("grasp", line(pre, grasp, 6), "closed", 0.0),
         _seg("open", q_open, "closed", th),
-        _seg("release", q_open[-1:], "open", [amount]),
-        _seg("retreat", line(end, back, 6), "open")))
+        _seg("release", q_open[-1:], "open", amount),
+        _seg("retreat", line(end, back, 6), "open", amount)))
 
 
-def fixture_planner(plans: dict, status: str = "OK"):
-    """A planner for :func:`simcheck.certify` that returns the hand-made ``plans`` (joint -> PlannedTask)."""
-    from simcheck.certification import PlanOutcome
+def fixture_planner(plans: dict):
+    """A planner for :func:`simcheck.certify` that returns the hand-made ``plans`` (joint -> PlanResult),
+    and NO_PATH for any other joint."""
 
     def plan(scene_urdf, task, seed, start=None, scene_state=None):
-        if status != "OK" or task.joint not in plans:
-            return PlanOutcome(status if status != "OK" else "NO_PATH", f"fixture has no plan for {task.joint}", None, 0.0)
-        return PlanOutcome("OK", f"hand-made plan for {task.joint}", plans[task.joint], 0.0)
+        if task.joint not in plans:
+            return PlanResult(PlanStatus.NO_PATH, f"fixture has no plan for {task.joint}", task, ROBOT.joint_names,
+                              amount=task.amount or 0.0)
+        return plans[task.joint]
 
     return plan

@@ -5,13 +5,13 @@ import dataclasses
 import numpy as np
 import pytest
 
+from planners.task import PlanResult
 from scenes.outcome import Outcome
 from simcheck.certificate import Certificate
 from simcheck.certification import certify
 from simcheck.errors import RolloutFormatError, SceneLoadError, TaskSpecError
 from simcheck.execute import execute_task, handle_link_for
 from simcheck.plan_recheck import densify, recheck_plan
-from simcheck.planned_task import PlannedTask
 from simcheck.rollout import Rollout
 from simcheck.world import World
 
@@ -95,7 +95,7 @@ def test_execution_is_deterministic():
 
 def test_the_object_moves_only_when_the_robot_moves_it():
     plan = drawer_plan()
-    idle = PlannedTask(DRAWER, 0.3, plan.joint_names, plan.segments[:1])   # approach only, never grasps
+    idle = dataclasses.replace(plan, segments=plan.segments[:1])   # approach only, never grasps
     with World(CABINET, ROBOT) as w:
         r = execute_task(w, idle)
     assert np.abs(r.object_q).max() < 1e-4 and not r.grasp_active.any()
@@ -110,13 +110,13 @@ def test_a_grasp_above_the_handle_is_never_made_and_fails():
     assert not t.criterion("opened_fraction").passed
 
 
-def _through_the_top_panel() -> PlannedTask:
+def _through_the_top_panel() -> PlanResult:
     """The drawer plan, but the approach comes down through the cabinet's top panel."""
     plan = drawer_plan()
     grasp_q = plan.segments[1].q[0]
     above = grasp_q + [-0.25, 0.0, 0.5, 0.0]
     inside = grasp_q + [-0.25, 0.0, 0.0, 0.0]
-    approach = _seg("approach", np.concatenate([line(above, inside, 12), line(inside, grasp_q, 8)]), "open")
+    approach = _seg("approach", np.concatenate([line(above, inside, 12), line(inside, grasp_q, 8)]), "open", 0.0)
     return dataclasses.replace(plan, segments=(approach,) + plan.segments[1:])
 
 
