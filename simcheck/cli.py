@@ -61,17 +61,6 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
-def _input_errors() -> tuple[type, ...]:
-    from simcheck.errors import SimcheckInputError
-    errors: tuple[type, ...] = (SimcheckInputError,)
-    try:
-        from planners.errors import PlannerInputError
-        errors += (PlannerInputError,)
-    except ImportError:  # pragma: no cover - planners is part of the package
-        pass
-    return errors
-
-
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     # default: WARNING for the libraries, one progress line per task from simcheck; -v: INFO; -vv: DEBUG
@@ -83,6 +72,7 @@ def main(argv: list[str] | None = None) -> int:
         from simcheck.batching.command import run_batch
         return run_batch(args)
     from scenes.outcome import Outcome, exit_code, internal_error
+    from scenes.description import InputError
 
     what = f"certifying {args.scene}" if args.command == "certify" else f"running scenario {args.scenario}"
     try:
@@ -99,7 +89,7 @@ def main(argv: list[str] | None = None) -> int:
         else:
             cert = run_scenario(args.scenario, out=Path(args.out), seed=args.seed, images=not args.no_images,
                                          video=args.video, gui=args.gui)
-    except _input_errors() as exc:
+    except InputError as exc:
         print(f"simcheck: error: {exc}", file=sys.stderr)
         return exit_code([Outcome.UNUSABLE])
     except Exception as exc:
