@@ -15,7 +15,6 @@ from planners.robot import GripperModel
 from scenes.outcome import Outcome
 from simcheck.certification import certify
 from simcheck.execute import execute_task
-from simcheck.planned_task import PlannedTask
 from simcheck.world import World
 
 from simcheck_fixture_plans import (CABINET, DRAWER, ROBOT, TOOL_OFFSET, _seg, drawer_plan, fixture_planner,
@@ -94,7 +93,7 @@ def test_a_part_still_moving_when_the_gripper_lets_go_fails(tmp_path):
     away = opened[-1] + [0.0, 0.0, 0.25, 0.0]             # retreat upward, out of the drawer's way
     plan = dataclasses.replace(plan, segments=plan.segments[:2] + (
         _seg("open", opened, "closed", s), _seg("release", opened[-1:], "open", [amount]),
-        _seg("retreat", line(opened[-1], away, 6), "open")))
+        _seg("retreat", line(opened[-1], away, 6), "open", amount)))
     t = _certify(plan, scene=_tilted_drawer(tmp_path, slope))
     assert t.status is Outcome.FAILED
     moving = t.criterion("settled_linear_speed")
@@ -109,7 +108,7 @@ def test_a_robot_joint_driven_past_its_limit_fails():
     high[2] = 1.75                                           # z_joint's upper limit is 1.6 m
     plan = dataclasses.replace(plan, segments=(_seg("approach", np.concatenate([line(start, high, 8),
                                                                                   line(high, plan.segments[0].q[-1], 8)]),
-                                                    "open"),) + plan.segments[1:])
+                                                    "open", 0.0),) + plan.segments[1:])
     t = _certify(plan)
     assert t.status is Outcome.FAILED
     lim = t.criterion("robot_joint_limits")
@@ -121,7 +120,7 @@ def test_a_deep_unexpected_contact_fails():
     grasp_q = plan.segments[1].q[0]
     inside = grasp_q + [-0.25, 0.0, 0.0, 0.0]                # the hand 25 cm inside the cabinet, through its front
     above = inside + [0.0, 0.0, 0.5, 0.0]
-    approach = _seg("approach", np.concatenate([line(above, inside, 12), line(inside, grasp_q, 8)]), "open")
+    approach = _seg("approach", np.concatenate([line(above, inside, 12), line(inside, grasp_q, 8)]), "open", 0.0)
     t = _certify(dataclasses.replace(plan, segments=(approach,) + plan.segments[1:]))
     assert t.status is Outcome.FAILED
     deep = t.criterion("unexpected_contact_depth")
