@@ -1,0 +1,111 @@
+"""recon.completion: legs extended to their supports, knobs back onto their mounts, hidden legs placed, a bed
+frame extended to its headboard."""
+
+import numpy as np
+import pytest
+
+from recon.completion import complete_missing_legs, complete_mounted_parts, complete_vertical_parts
+from recon.config import ReconConfig
+from recon.contacts import contact_edge
+from recon.primitive import Primitive
+from recon.scan import PartPoints
+
+CFG = ReconConfig()
+
+
+def at(x, y, z):
+    T = np.eye(4)
+    T[:3, 3] = [x, y, z]
+    return T
+
+
+def test_a_short_leg_is_extended_to_the_top_and_the_floor():
+    top = Primitive("box", [1.0, 0.8, 0.04], at(0, 0, 0.74))              # underside at z = 0.72
+    leg = Primitive("cylinder", [0.05, 0.05, 0.55], at(0.4, 0.3, 0.05 + 0.275))  # 0.05 .. 0.60
+    assert contact_edge(1, top.planes(), 2, leg.planes(), CFG.contacts) is None
+    out, changes = complete_vertical_parts({1: top, 2: leg}, {1: "top", 2: "leg"}, CFG.completion, CFG.contacts)
+    c = out[2].corners()[:, 2]
+    assert c.min() == pytest.approx(0.0, abs=1e-9) and c.max() == pytest.approx(0.72, abs=1e-9)
+    assert changes[2] == pytest.approx((0.05, 0.12))
+    assert out[1] is top
+    assert contact_edge(1, top.planes(), 2, out[2].planes(), CFG.contacts) is not None
+    # a leg not under the top (outside its outline) is left alone
+    far = Primitive("cylinder", [0.05, 0.05, 0.55], at(0.8, 0.3, 0.325))
+    out, _ = complete_vertical_parts({1: top, 2: far}, {1: "top", 2: "leg"}, CFG.completion, CFG.contacts)
+    assert out[2].corners()[:, 2].max() == pytest.approx(0.6)
+
+
+def test_a_floating_knob_is_extended_back_onto_its_drawer():
+    drawer = Primitive("box", [0.02, 0.6, 0.2], at(0.49, 0, 0.5))          # front face at x = 0.5
+    R = np.eye(4)
+    R[:3, :3] = [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]                         # cylinder axis along x
+    R[:3, 3] = [0.53, 0.0, 0.5]
+    knob = Primitive("cylinder", [0.03, 0.03, 0.02], R)                    # 0.52 .. 0.54: 2 cm gap
+    out, changes = complete_mounted_parts({1: drawer, 2: knob}, {1: "drawer", 2: "knob"}, CFG.completion, CFG.contacts)
+    assert changes[2] == pytest.approx(0.02)
+    assert out[2].corners()[:, 0].min() == pytest.approx(0.5)
+    assert out[2].corners()[:, 0].max() == pytest.approx(0.54)
+
+
+def _legs(skip):
+    corners = {2: (0.0, 0.0), 3: (1.8, 0.0), 4: (1.8, 1.2), 5: (0.0, 1.2)}
+    prims = {i: Primitive("box", [0.06, 0.06, 0.15], at(x, y, 0.075)) for i, (x, y) in corners.items() if i != skip}
+    prims[1] = Primitive("box", [1.9, 1.3, 0.1], at(0.9, 0.6, 0.2))
+    labels = {i: ("frame" if i == 1 else "leg") for i in prims}
+    return prims, labels, corners[skip]
+
+
+def test_a_hidden_fourth_leg_is_placed_at_the_missing_corner():
+    prims, labels, (x, y) = _legs(skip=4)
+    out, placed = complete_missing_legs("bed", prims, labels, (PartPoints(1, 4, "leg", np.zeros((0, 3))),), CFG.completion)
+    assert set(placed) == {4}
+    assert np.allclose(out[4].center, [x, y, 0.075])
+    assert np.allclose(out[4].size, [0.06, 0.06, 0.15])
+    assert set(out) == set(prims) | {4}
+
+
+def test_a_hidden_leg_whose_few_points_lie_elsewhere_is_not_placed():
+    prims, labels, (x, y) = _legs(skip=4)
+    far = np.array([[x - 0.9, y - 0.6, 0.05]] * 5)              # 1 m from the missing corner
+    out, placed = complete_missing_legs("bed", prims, labels, (PartPoints(1, 4, "leg", far),), CFG.completion)
+    assert placed == {} and set(out) == set(prims)
+    near = np.array([[x + 0.01, y - 0.02, 0.05]] * 5)
+    _, placed = complete_missing_legs("bed", prims, labels, (PartPoints(1, 4, "leg", near),), CFG.completion)
+    assert set(placed) == {4}
+
+
+def test_no_leg_is_placed_for_a_cabinet_or_legs_that_span_no_right_angle():
+    prims, labels, _ = _legs(skip=4)
+    skipped = (PartPoints(1, 4, "leg", np.zeros((0, 3))),)
+    assert complete_missing_legs("cabinet", prims, labels, skipped, CFG.completion)[1] == {}
+    prims[5] = Primitive("box", [0.06, 0.06, 0.15], at(0.9, 0.6, 0.075))   # collinear-ish, not a corner
+    assert complete_missing_legs("bed", prims, labels, skipped, CFG.completion)[1] == {}
+
+
+def test_two_hidden_legs_are_placed_from_two_seen_ones_and_the_frame():
+    corners = {2: (0.0, 0.0), 3: (1.8, 0.0), 4: (1.8, 1.2), 5: (0.0, 1.2)}
+    frame = Primitive("box", [1.9, 1.3, 0.1], at(0.9, 0.6, 0.2))
+    for seen in ((2, 3), (2, 4)):                       # adjacent (mirrored about the frame) and diagonal
+        prims = {i: Primitive("box", [0.06, 0.06, 0.15], at(*corners[i], 0.075)) for i in seen}
+        prims[1] = frame
+        labels = {i: ("frame" if i == 1 else "leg") for i in prims}
+        hidden = [i for i in corners if i not in seen]
+        skipped = tuple(PartPoints(1, i, "leg", np.array([[*corners[i], 0.05]] * 3)) for i in hidden)
+        out, placed = complete_missing_legs("bed", prims, labels, skipped, CFG.completion, base=1)
+        assert set(placed) == set(hidden), seen
+        for i in hidden:
+            assert np.allclose(out[i].center, [*corners[i], 0.075], atol=1e-9), (seen, i)
+
+
+def test_a_bed_frame_hidden_at_its_head_end_is_extended_to_its_headboard():
+    from recon.completion import complete_reaching_parts
+
+    frame = Primitive("box", [1.48, 1.693, 0.15], at(2.428, 1.325, 0.294))   # random/4 bed15: 26 cm short
+    head = Primitive("box", [1.521, 0.05, 1.048], at(2.428, 2.446, 0.527))
+    labels = {80: "frame", 85: "headboard"}
+    out, changes = complete_reaching_parts({80: frame, 85: head}, labels, CFG.completion, CFG.contacts)
+    assert changes[80] == pytest.approx(2.421 - (1.325 + 1.693 / 2))
+    assert out[80].corners()[:, 1].max() == pytest.approx(2.421)
+    assert out[80].corners()[:, 1].min() == pytest.approx(1.325 - 1.693 / 2)
+    far = Primitive("box", [1.521, 0.05, 1.048], at(2.428, 2.446 + 0.5, 0.527))     # beyond the reach
+    assert complete_reaching_parts({80: frame, 85: far}, labels, CFG.completion, CFG.contacts)[1] == {}
