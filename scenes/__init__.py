@@ -9,7 +9,9 @@ Command line: ``scenes list`` and ``scenes make NAME [--seed S] [--preset clean|
 ``scan.ply`` + ``labels.json`` + ``scan.npz`` (DESIGN.md scan format), ``scan_meta.json``,
 ``preview_room.png``, ``preview_scan.png``.
 
-Layout: ``generators/`` (one module per object family, all built with ``generators.builder``),
+Layout: ``description/`` (the engine-free scene description every partscene package imports: errors,
+naming, vocabulary, poses, shapes, the scene model, the only URDF and truth.json readers and writers),
+``generators/`` (one module per object family, all built with ``generators.builder``),
 ``composer`` + ``footprints`` (room placement), ``builtin`` (named scenes), ``truth_urdf`` /
 ``truth_json`` (ground truth on disk), ``scanner/`` (camera path, open3d ray casting adapter,
 degradations, presets), ``scan_io``, ``preview``; checks in ``validate``, ``overlap`` and
