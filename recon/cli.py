@@ -9,20 +9,21 @@ could be produced (scene.urdf, graph.json, preview.png).
 from __future__ import annotations
 
 import argparse
-import logging
 import sys
 from pathlib import Path
 
 from recon.errors import ReconError, ScanError
+from scenes.command_line import root_parser, setup_logging
 from scenes.outcome import Outcome, exit_code, internal_error
 
 __all__ = ["main"]
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="recon", description="Part-level reconstruction of a labelled scan.")
+    p, common = root_parser("recon", "Part-level reconstruction of a labelled scan.")
     sub = p.add_subparsers(dest="command", required=True)
-    b = sub.add_parser("build", help="scan + labels -> scene.urdf, scene.srdf, graph.json, preview.png (+ scene.xml)")
+    b = sub.add_parser("build", help="scan + labels -> scene.urdf, scene.srdf, graph.json, preview.png (+ scene.xml)",
+                       parents=[common])
     b.add_argument("scan", type=Path, help="scan.ply or scan.npz (metres, z up unless --level-floor)")
     b.add_argument("--labels", type=Path, required=True, help="labels.json")
     b.add_argument("--out", type=Path, required=True, help="output folder (created)")
@@ -30,16 +31,12 @@ def _parser() -> argparse.ArgumentParser:
     b.add_argument("--seed", type=int, default=0)
     b.add_argument("--no-preview", action="store_true", help="skip preview.png")
     b.add_argument("--mjcf", action="store_true", help="also write scene.xml (MJCF, for MuJoCo)")
-    g = b.add_mutually_exclusive_group()
-    g.add_argument("-v", "--verbose", action="store_true")
-    g.add_argument("-q", "--quiet", action="store_true")
     return p
 
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    level = logging.DEBUG if args.verbose else logging.ERROR if args.quiet else logging.WARNING
-    logging.basicConfig(level=level, format="recon: %(levelname)s: %(message)s", stream=sys.stderr)
+    setup_logging(args)
 
     def progress(msg: str, done: int, total: int):
         if not args.quiet:

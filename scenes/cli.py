@@ -7,9 +7,9 @@ Exit codes (:func:`scenes.outcome.exit_code`): 0 done; 2 bad arguments or a scen
 from __future__ import annotations
 
 import argparse
-import logging
 import sys
 
+from .command_line import root_parser, setup_logging
 from .errors import ScenesError
 from .outcome import Outcome, exit_code, internal_error
 
@@ -17,13 +17,7 @@ __all__ = ["main"]
 
 
 def _parser() -> argparse.ArgumentParser:
-    common = argparse.ArgumentParser(add_help=False)
-    # SUPPRESS: a flag given before or after the subcommand is kept (the subparser adds no default)
-    common.add_argument("-v", "--verbose", action="store_true", default=argparse.SUPPRESS, help="log progress")
-    common.add_argument("-q", "--quiet", action="store_true", default=argparse.SUPPRESS,
-                        help="print nothing but errors")
-    ap = argparse.ArgumentParser(prog="scenes", description="Ground-truth articulated rooms and virtual RGB-D scans.",
-                                 parents=[common])
+    ap, common = root_parser("scenes", "Ground-truth articulated rooms and virtual RGB-D scans.")
     sub = ap.add_subparsers(dest="cmd", required=True)
     sub.add_parser("list", help="list the built-in scenes", parents=[common])
     mk = sub.add_parser("make", help="make and scan a scene", parents=[common])
@@ -38,9 +32,7 @@ def _parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    args.quiet = getattr(args, "quiet", False)
-    level = logging.INFO if getattr(args, "verbose", False) and not args.quiet else logging.WARNING
-    logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
+    setup_logging(args)
     try:
         if args.cmd == "list":
             from .builtin import SCENE_DESCRIPTIONS

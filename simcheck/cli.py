@@ -19,27 +19,25 @@ import logging
 import sys
 from pathlib import Path
 
+from scenes.command_line import root_parser, setup_logging
+
 __all__ = ["main"]
 
 log = logging.getLogger("simcheck")
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="simcheck", description="Certify drawer and door opening in physics.")
-    p.add_argument("-v", "--verbose", action="count", default=0, help="more logging (-vv: debug)")
-    p.add_argument("-q", "--quiet", action="store_true", help="only errors")
+    p, verbosity = root_parser("simcheck", "Certify drawer and door opening in physics.")
     sub = p.add_subparsers(dest="command", required=True)
 
     def common(sp):
-        sp.add_argument("-v", "--verbose", action="count", default=argparse.SUPPRESS, help="more logging")
-        sp.add_argument("-q", "--quiet", action="store_true", default=argparse.SUPPRESS, help="only errors")
         sp.add_argument("--out", default="simcheck-out", help="output folder (certificate.json, rollouts/, images/)")
         sp.add_argument("--seed", type=int, default=None, help="planning seed (default 0)")
         sp.add_argument("--gui", action="store_true", help="PyBullet GUI window (needs a display)")
         sp.add_argument("--video", action="store_true", help="also write an animated GIF per task")
         sp.add_argument("--no-images", action="store_true", help="skip the key-frame PNGs")
 
-    c = sub.add_parser("certify", help="certify tasks on a scene URDF")
+    c = sub.add_parser("certify", help="certify tasks on a scene URDF", parents=[verbosity])
     c.add_argument("scene", help="scene URDF to plan on (an estimate or a truth)")
     c.add_argument("--task", action="append", default=[], metavar="KIND:JOINT",
                    help="open-drawer:JOINT or open-door:JOINT (repeatable)")
@@ -53,19 +51,19 @@ def _parser() -> argparse.ArgumentParser:
                     help="certify when, with 95%% confidence, at least P of such worlds succeed (default 0.9)")
     rb.add_argument("--replay-sample", type=int, default=None, metavar="I", help="execute sample I alone")
     common(c)
-    r = sub.add_parser("run", help="run a scenario YAML (tasks in sequence, world state carried over)")
+    r = sub.add_parser("run", help="run a scenario YAML (tasks in sequence, world state carried over)",
+                       parents=[verbosity])
     r.add_argument("scenario")
     common(r)
     from simcheck.batching.command import add_batch_parser
-    add_batch_parser(sub)
+    add_batch_parser(sub, parents=[verbosity])
     return p
 
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     # default: WARNING for the libraries, one progress line per task from simcheck; -v: INFO; -vv: DEBUG
-    level = logging.ERROR if args.quiet else (logging.WARNING, logging.INFO, logging.DEBUG)[min(args.verbose, 2)]
-    logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
+    level = setup_logging(args)
     if not args.quiet:
         logging.getLogger("simcheck.certification").setLevel(min(level, logging.INFO))
     if args.command == "batch":

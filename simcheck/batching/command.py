@@ -18,10 +18,11 @@ __all__ = ["add_batch_parser", "run_batch"]
 log = logging.getLogger("simcheck")
 
 
-def add_batch_parser(sub) -> None:
+def add_batch_parser(sub, parents: list[argparse.ArgumentParser] = ()) -> None:
+    """Add the ``batch`` subcommand to ``sub``; ``parents`` carry the shared ``-v``/``-q`` options."""
     from simcheck.batching import DEFAULT_TASK_TIMEOUT
 
-    b = sub.add_parser("batch", help="certify every task of a manifest on Ray (resumable)")
+    b = sub.add_parser("batch", help="certify every task of a manifest on Ray (resumable)", parents=list(parents))
     b.add_argument("manifest", help="YAML list or JSON Lines of scene:/scan: entries")
     b.add_argument("--out", required=True, help="output folder: results/, scans/, summary.json, summary.html")
     b.add_argument("--workers", type=int, default=None, help="local CPUs to use (default: all)")
@@ -34,8 +35,6 @@ def add_batch_parser(sub) -> None:
     b.add_argument("--images", action="store_true", help="also render each task's key-frame PNGs")
     b.add_argument("--junit", default=None, help="also write JUnit XML here")
     b.add_argument("--baseline", default=None, help="an older summary.json: list the tasks that newly fail")
-    b.add_argument("-v", "--verbose", action="count", default=argparse.SUPPRESS, help="more logging")
-    b.add_argument("-q", "--quiet", action="store_true", default=argparse.SUPPRESS, help="only errors")
 
 
 def run_batch(args) -> int:
