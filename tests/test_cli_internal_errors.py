@@ -8,6 +8,7 @@ import pytest
 import recon.cli
 import scenes.cli
 import simcheck.cli
+import simcheck.run  # noqa: F401 - imported before the patches, so its `from ... import` names stay real
 
 
 def _boom(*args, **kwargs):
