@@ -29,7 +29,7 @@ import lazy_loader
 __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "robot": ["RobotSpec", "default_robot"],
     "task": ["OpenTask", "PlanResult", "PlanStatus", "Segment", "SEGMENT_NAMES", "parse_task", "parse_tasks",
-             "check_task"],
+             "check_task", "ALL_MOVABLE", "movable_joint_tasks"],
     "plan": ["plan_open_task"],
     "config": ["PlannerConfig", "default_amount"],
     "errors": ["PlannerError", "PlannerInputError", "SceneURDFError", "TaskSpecError", "TaskJointError",

@@ -18,7 +18,7 @@ import numpy as np
 from planners.errors import TaskJointError, TaskSpecError
 
 __all__ = ["OpenTask", "PlanStatus", "Segment", "PlanResult", "SEGMENT_NAMES", "KINDS", "parse_task",
-           "parse_tasks", "check_task"]
+           "parse_tasks", "check_task", "ALL_MOVABLE", "movable_joint_tasks"]
 
 #: Segment names in execution order.
 SEGMENT_NAMES = ("approach", "grasp", "open", "release", "retreat")
@@ -172,6 +172,35 @@ def check_task(task: OpenTask, joints: Mapping[str, _JointLike], source: object)
     if not j.upper > j.lower:
         raise TaskJointError(f"{where} has no opening range (lower {j.lower}, upper {j.upper})")
     return j
+
+
+#: the task list that means "open every drawer and door of the scene" (``--all-movable``)
+ALL_MOVABLE = "all-movable"
+
+
+def movable_joint_tasks(joints: Mapping[str, _JointLike], source: object) -> tuple[tuple[OpenTask, ...], dict[str, str]]:
+    """A task for every drawer and door of ``joints`` (name -> joint, in file order): prismatic ->
+    ``open-drawer``, revolute or continuous -> ``open-door``; and the movable joints left out, by name,
+    with why (no opening range: ``upper <= lower``). Fixed and other joint types are not tasks.
+
+    >>> from types import SimpleNamespace as J
+    >>> tasks, skipped = movable_joint_tasks({"d": J(type="prismatic", lower=0.0, upper=0.3),
+    ...                                       "h": J(type="revolute", lower=0.0, upper=0.0),
+    ...                                       "f": J(type="fixed", lower=0.0, upper=0.0)}, "s.urdf")
+    >>> [str(t) for t in tasks], skipped
+    (['open-drawer:d'], {'h': 's.urdf: revolute joint has no opening range (lower 0.0, upper 0.0)'})
+    """
+    kinds = {"prismatic": "drawer", "revolute": "door", "continuous": "door"}
+    tasks, skipped = [], {}
+    for name, j in joints.items():
+        jtype = str(getattr(j.type, "value", j.type))
+        if jtype not in kinds:
+            continue
+        if not j.upper > j.lower:
+            skipped[name] = f"{source}: {jtype} joint has no opening range (lower {j.lower}, upper {j.upper})"
+            continue
+        tasks.append(OpenTask(kinds[jtype], name))
+    return tuple(tasks), skipped
 
 
 class PlanStatus(enum.Enum):

@@ -8,6 +8,7 @@ software versions and timings. Written as ``certificate.json`` (atomically) and 
      "criteria": {"name": "partscene-default", "version": "2.0", ...thresholds...},
      "seeds": {"seed": 0}, "versions": {"pybullet": ..., "pinocchio": ..., "ompl": ..., "numpy": ..., "partscene": ...},
      "timings": {"total": s},
+     "untested": {joint: "why it was not tested"},     (movable joints left out of an --all-movable run)
      "tasks": [{"kind": "open-drawer", "joint": "...", "status": "certified" | "failed" | "not_planned" | "unreachable" | ...,
                 "reason": "...", "amount": 0.31, "unit": "m", "seed": 0, "rollout": "rollouts/<joint>.npz",
                 "plan_status": "OK" | "NO_STAND_POSE" | ..., "start_state": {joint: value},
@@ -22,6 +23,7 @@ software versions and timings. Written as ``certificate.json`` (atomically) and 
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -132,6 +134,8 @@ class Certificate:
     seeds: dict
     versions: dict
     timings: dict = field(default_factory=dict)
+    #: movable joints of the scene that were not tested (``--all-movable``), by name, with why
+    untested: dict = field(default_factory=dict)
     path: Path | None = None
 
     @property
@@ -152,14 +156,25 @@ class Certificate:
         return exit_code(t.status for t in self.tasks)
 
     def summary(self) -> str:
-        """One line per task: status, joint, reason."""
-        return "\n".join(f"{t.status.value:12s} {t.kind}:{t.joint}  {t.reason}" for t in self.tasks)
+        """One line per task: status, joint, reason; then one per untested joint: ``untested``, joint, why."""
+        lines = [f"{t.status.value:12s} {t.kind}:{t.joint}  {t.reason}" for t in self.tasks]
+        lines += [f"{'untested':12s} {joint}  {why}" for joint, why in self.untested.items()]
+        return "\n".join(lines)
+
+    def summary_dict(self) -> dict:
+        """The summary as JSON-ready data: ``ok``, ``exit_code``, the scene, reference and certificate path,
+        per task its kind, joint, status, reason, amount and unit, and the untested joints with why."""
+        return {"ok": self.ok, "exit_code": self.exit_code, "scene": self.scene, "against": self.against,
+                "certificate": str(self.path) if self.path is not None else None,
+                "tasks": [{"kind": t.kind, "joint": t.joint, "status": t.status.value, "reason": t.reason,
+                           "amount": t.amount if math.isfinite(t.amount) else None, "unit": t.unit} for t in self.tasks],
+                "untested": dict(self.untested)}
 
     def to_dict(self) -> dict:
         return {"format": CERTIFICATE_FORMAT, "ok": self.ok, "scene": self.scene, "against": self.against,
                 "robot": self.robot, "criteria": dict(self.criteria), "seeds": dict(self.seeds),
                 "versions": dict(self.versions), "timings": dict(self.timings),
-                "tasks": [t.to_dict() for t in self.tasks]}
+                "untested": dict(self.untested), "tasks": [t.to_dict() for t in self.tasks]}
 
     @classmethod
     def from_dict(cls, d: dict, path: Path | None = None) -> "Certificate":
@@ -169,7 +184,7 @@ class Certificate:
         return cls(tasks=tuple(TaskCertificate.from_dict(t) for t in d["tasks"]), scene=d["scene"],
                    against=d.get("against"), robot=d.get("robot", ""), criteria=dict(d.get("criteria", {})),
                    seeds=dict(d.get("seeds", {})), versions=dict(d.get("versions", {})),
-                   timings=dict(d.get("timings", {})), path=path)
+                   timings=dict(d.get("timings", {})), untested=dict(d.get("untested", {})), path=path)
 
     def write(self, out_dir: str | Path) -> Path:
         """Write ``certificate.json`` into ``out_dir`` atomically; returns its path."""

@@ -21,7 +21,8 @@ from typing import Callable
 import numpy as np
 
 from planners.config import PlannerConfig
-from planners.task import OpenTask, PlanResult, PlanStatus, check_task, parse_tasks
+from planners.errors import TaskSpecError
+from planners.task import ALL_MOVABLE, OpenTask, PlanResult, PlanStatus, check_task, movable_joint_tasks, parse_tasks
 from scenes.outcome import Outcome
 from simcheck.certificate import Certificate, TaskCertificate, software_versions
 from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, PhysicsConfig
@@ -246,7 +247,9 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
     Args:
         scene: the scene URDF to plan on (an estimate, or a truth).
         tasks: task strings ("open-drawer:JOINT", "open-door:JOINT", optionally "=AMOUNT", see
-            ``planners.parse_task``) or ``planners.OpenTask``.
+            ``planners.parse_task``) or ``planners.OpenTask``; or ``"all-movable"``: every drawer and door of
+            ``scene`` (``planners.movable_joint_tasks``), the movable joints without an opening range logged
+            and listed in ``Certificate.untested``.
         against: a reference URDF to execute on instead of ``scene`` (joints matched by name).
         seed: planning seed (physics is deterministic).
         out: folder for certificate.json, rollouts/ and images/ (None: nothing written).
@@ -264,6 +267,21 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         SimcheckInputError (SceneLoadError, RobotBindingError) and ``planners.PlannerInputError``
             (TaskSpecError, HandleNotFoundError, ...): unusable input, naming the file and joint.
     """
+    if isinstance(tasks, str) and tasks == ALL_MOVABLE:
+        tasks, untested = movable_joint_tasks(read_scene_joints(scene), scene)
+        for joint, why in untested.items():
+            log.warning("%s: not tested: %s", joint, why)
+        if not tasks:
+            raise TaskSpecError(f"{scene}: no drawer or door with an opening range to certify"
+                                f"{f' (untested: {sorted(untested)})' if untested else ''}")
+        cert = certify(scene, tasks, against=against, seed=seed, out=out, robot=robot, planner=planner,
+                       amounts=amounts, criteria=criteria, physics=physics, planner_config=planner_config,
+                       images=images, video=video, gui=gui, carry_state=carry_state, robust=robust,
+                       min_success=min_success, replay_sample=replay_sample)
+        if not untested:
+            return cert
+        cert = dataclasses.replace(cert, untested=untested)
+        return dataclasses.replace(cert, path=cert.write(cert.path.parent)) if cert.path is not None else cert
     if robust is not None or replay_sample is not None:
         from simcheck.robust import certify_robustly
         return certify_robustly(certify, scene, tasks, robust=robust, min_success=min_success,

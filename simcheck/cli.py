@@ -1,9 +1,9 @@
 """``simcheck``: certify opening tasks in physics.
 
-    simcheck certify SCENE.urdf --task open-drawer:JOINT --task open-door:JOINT [--amount A ...]
-                     [--against REFERENCE.urdf] [--out DIR] [--seed S] [--gui] [--video] [--robot SPEC]
-                     [--robust N [--min-success P] [--replay-sample I]]
-    simcheck run SCENARIO.yaml [--out DIR] [--seed S] [--gui] [--video]
+    simcheck certify SCENE.urdf (--task open-drawer:JOINT --task open-door:JOINT ... | --all-movable)
+                     [--amount A ...] [--against REFERENCE.urdf] [--out DIR] [--seed S] [--gui] [--video]
+                     [--robot SPEC] [--robust N [--min-success P] [--replay-sample I]] [--json]
+    simcheck run SCENARIO.yaml [--out DIR] [--seed S] [--gui] [--video] [--json]
     simcheck batch MANIFEST --out DIR [--workers N] [--address ADDR] ...   (simcheck.batching.command)
 
 Exit codes (:func:`scenes.outcome.exit_code` of the task outcomes): 0 every task certified; 2 the input
@@ -15,6 +15,7 @@ was not planned or its object is unreachable).
 from __future__ import annotations
 
 import argparse
+import json
 import logging
 import sys
 from pathlib import Path
@@ -36,11 +37,16 @@ def _parser() -> argparse.ArgumentParser:
         sp.add_argument("--gui", action="store_true", help="PyBullet GUI window (needs a display)")
         sp.add_argument("--video", action="store_true", help="also write an animated GIF per task")
         sp.add_argument("--no-images", action="store_true", help="skip the key-frame PNGs")
+        sp.add_argument("--json", action="store_true",
+                        help="print the certificate's summary as JSON on stdout (logging stays on stderr)")
 
     c = sub.add_parser("certify", help="certify tasks on a scene URDF", parents=[verbosity])
     c.add_argument("scene", help="scene URDF to plan on (an estimate or a truth)")
     c.add_argument("--task", action="append", default=[], metavar="KIND:JOINT",
                    help="open-drawer:JOINT or open-door:JOINT (repeatable)")
+    c.add_argument("--all-movable", action="store_true",
+                   help="certify every drawer (prismatic joint) and door (revolute joint) of the scene; "
+                        "joints without an opening range are listed as untested")
     c.add_argument("--amount", action="append", type=float, default=[],
                    help="opening, m or rad: one for all tasks or one per task (default: 90%% of the range, doors <= 90 deg)")
     c.add_argument("--against", default=None, help="reference URDF to execute on (joints matched by name)")
@@ -74,16 +80,20 @@ def main(argv: list[str] | None = None) -> int:
 
     what = f"certifying {args.scene}" if args.command == "certify" else f"running scenario {args.scenario}"
     try:
+        from planners.task import ALL_MOVABLE
         from simcheck.certification import certify
+        from simcheck.errors import SimcheckInputError
         from simcheck.robot_spec_file import load_robot_spec
         from simcheck.run import run_scenario
 
         if args.command == "certify":
+            if args.all_movable and args.task:
+                raise SimcheckInputError("give --task or --all-movable, not both")
             robot = load_robot_spec(args.robot)
-            cert = certify(args.scene, args.task, against=args.against, amounts=args.amount or None,
-                                    seed=args.seed or 0, out=Path(args.out), robot=robot, images=not args.no_images,
-                                    video=args.video, gui=args.gui, robust=args.robust,
-                                    min_success=args.min_success, replay_sample=args.replay_sample)
+            cert = certify(args.scene, ALL_MOVABLE if args.all_movable else args.task, against=args.against,
+                           amounts=args.amount or None, seed=args.seed or 0, out=Path(args.out), robot=robot,
+                           images=not args.no_images, video=args.video, gui=args.gui, robust=args.robust,
+                           min_success=args.min_success, replay_sample=args.replay_sample)
         else:
             cert = run_scenario(args.scenario, out=Path(args.out), seed=args.seed, images=not args.no_images,
                                          video=args.video, gui=args.gui)
@@ -92,8 +102,11 @@ def main(argv: list[str] | None = None) -> int:
         return exit_code([Outcome.UNUSABLE])
     except Exception as exc:
         return internal_error("simcheck", what, exc, log)
-    print(cert.summary())
-    print(f"certificate: {cert.path}")
+    if args.json:
+        print(json.dumps(cert.summary_dict(), indent=2))
+    else:
+        print(cert.summary())
+        print(f"certificate: {cert.path}")
     for t in cert.tasks:
         if t.status is Outcome.UNUSABLE:
             print(f"simcheck: error: {t.kind}:{t.joint} cannot be certified: {t.reason}", file=sys.stderr)

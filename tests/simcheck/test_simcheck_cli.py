@@ -169,3 +169,49 @@ def test_robot_spec_file_round_trips_the_default_robot(tmp_path):
     from simcheck.errors import RobotBindingError
     with pytest.raises(RobotBindingError, match="bad.yaml"):
         load_robot_spec(str(tmp_path / "bad.yaml"))
+
+
+def test_all_movable_certifies_every_drawer_and_door_and_lists_joints_without_a_range(tmp_path, capsys, caplog):
+    scene = tmp_path / "scene.urdf"
+    scene.write_text(CAB.read_text().replace('lower="0.0" upper="1.9"', 'lower="0.0" upper="0.0"'))
+    code = main(["certify", str(scene), "--all-movable", "--json", "--no-images", "--out", str(tmp_path / "o")])
+    out = capsys.readouterr().out
+    summary = json.loads(out)                                # stdout is the JSON summary alone
+    assert code == summary["exit_code"] == 0 and summary["ok"]
+    assert [(t["kind"], t["joint"], t["status"]) for t in summary["tasks"]] == [("open-drawer", DRAWER, "certified")]
+    assert list(summary["untested"]) == [DOOR] and "no opening range" in summary["untested"][DOOR]
+    assert any(DOOR in r.getMessage() and "not tested" in r.getMessage() for r in caplog.records)
+    doc = json.loads((tmp_path / "o" / "certificate.json").read_text())
+    assert doc["untested"] == summary["untested"] and summary["certificate"] == str(tmp_path / "o" / "certificate.json")
+
+
+def test_all_movable_tasks_are_one_per_prismatic_and_revolute_joint():
+    from planners.task import movable_joint_tasks
+
+    tasks, untested = movable_joint_tasks(read_scene_joints(CAB), CAB)
+    assert [str(t) for t in tasks] == [f"open-drawer:{DRAWER}", f"open-door:{DOOR}"] and untested == {}
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--all-movable", "--task", f"open-drawer:{DRAWER}"], "give --task or --all-movable, not both"),
+])
+def test_all_movable_misuse_exits_2(argv, message, tmp_path, capsys):
+    assert main(["certify", str(CAB), *argv, "--out", str(tmp_path)]) == 2
+    assert message in capsys.readouterr().err
+
+
+def test_all_movable_without_any_drawer_or_door_exits_2(tmp_path, capsys):
+    scene = tmp_path / "scene.urdf"
+    scene.write_text(CAB.read_text().replace('upper="1.9"', 'upper="0.0"').replace('upper="0.35"', 'upper="0.0"'))
+    assert main(["certify", str(scene), "--all-movable", "--out", str(tmp_path / "o")]) == 2
+    assert "no drawer or door with an opening range" in capsys.readouterr().err
+
+
+def test_the_summary_lists_untested_joints_and_round_trips(tmp_path):
+    from simcheck.certificate import Certificate
+
+    cert = Certificate(tasks=(), scene="s.urdf", against=None, robot="r.urdf", criteria={}, seeds={"seed": 0},
+                       versions={}, untested={"j": "s.urdf: revolute joint has no opening range"})
+    assert cert.summary() == "untested     j  s.urdf: revolute joint has no opening range"
+    assert Certificate.load(cert.write(tmp_path)).untested == cert.untested
+    assert json.loads(json.dumps(cert.summary_dict()))["untested"] == cert.untested
