@@ -16,7 +16,8 @@ def run_scenario(path, *, out=None, seed: int | None = None, images: bool = True
                  gui: bool = False, **kwargs) -> Certificate:
     """Run the scenario YAML at ``path``: its tasks in order, the world state carried from task to task
     (the scene's joints keep their values; each plan starts from the robot's current configuration when
-    the planner can, else from its own start). ``seed`` overrides the scenario's seed."""
+    the planner can, else from its own start); each task's certificate records where it started
+    (``start_state``: the scene's joints, ``start_robot_q``: the robot). ``seed`` overrides the scenario's seed."""
     sc = load_scenario(path)
     robot = load_robot_spec(sc.robot)
     return certify(sc.scene, list(sc.tasks), against=sc.against, seed=sc.seed if seed is None else seed,
