@@ -106,8 +106,9 @@ def _scan_tasks(entry: Entry, scene: Path) -> tuple[list[str], dict[str, str]]:
 
     ``tasks: all-movable`` means every movable joint of the reconstruction, plus, with a ``truth``,
     every movable joint of the truth that the reconstruction lacks."""
+    from planners.task import KINDS, parse_task
+    from scenes.description import InputError
     from simcheck.scene_joints import read_scene_joints
-    from planners.task import KINDS
 
     joints = read_scene_joints(scene)
     have = {t.split(":", 1)[1]: t for t in _movable_tasks(scene)}
@@ -119,12 +120,16 @@ def _scan_tasks(entry: Entry, scene: Path) -> tuple[list[str], dict[str, str]]:
         wanted = list(entry.tasks)
     missing = {}
     for task in wanted:
-        kind, _, rest = task.partition(":")
-        joint = rest.split("=", 1)[0].split("@", 1)[0]
-        j = joints.get(joint)
-        if j is None or j.type != KINDS.get(kind.removeprefix("open-")):
+        try:
+            parsed = parse_task(task)
+        except InputError as exc:
+            missing[task] = str(exc)
+            continue
+        j = joints.get(parsed.joint)
+        if j is None or j.type != KINDS[parsed.kind]:
             what = "no joint" if j is None else f"a {j.type} joint"
-            missing[task] = f"the reconstruction of {entry.name} has {what} {joint!r}: {kind} cannot be certified"
+            missing[task] = (f"the reconstruction of {entry.name} has {what} {parsed.joint!r}: {parsed.action} "
+                             "cannot be certified")
     return wanted, missing
 
 
