@@ -116,3 +116,15 @@ def test_cli_names_a_nan_uncertainty_and_exits_2(tmp_path):
                         "--out", str(tmp_path / "out"), "--robust", "3"], capture_output=True, text=True, timeout=120)
     assert r.returncode == 2, r.stderr
     assert f"joint '{DOOR}': uncertainty.origin_m is nan" in r.stderr
+
+
+def test_robust_against_a_reference_samples_physics_only_on_copies_of_the_reference(tmp_path):
+    ref = _with_graph(tmp_path / "ref", DATA / "cabinet.urdf")
+    cert = certify(ref, ["open-drawer:cabinet1_drawer2_joint"], against=ref, robust=2, images=False, out=None)
+    block = cert["cabinet1_drawer2_joint"].robust
+    assert block["mode"] == "physics" and block["samples"] == 2
+    sj = read_scene_joints(ref)["cabinet1_drawer2_joint"]
+    for p in block["perturbations"]:
+        assert p["axis_off_deg"] == 0.0 and p["origin_off_m"] == 0.0 and p["upper"] == sj.upper
+        assert p["base_error"] == [0.0, 0.0, 0.0] and p["tracking_gain"] == 1.0
+    assert len({p["joint_friction"] for p in block["perturbations"]}) == 2
