@@ -21,7 +21,7 @@ import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
-__all__ = ["ReconConfig", "ScanConfig", "LevelingConfig", "FittingConfig", "CompletionConfig", "ContactConfig",
+__all__ = ["ReconConfig", "ScanConfig", "LevelingConfig", "FittingConfig", "CoverageConfig", "CompletionConfig", "ContactConfig",
            "TreeConfig", "RefinementConfig", "HandleConfig", "JointConfig", "ShapeConfig", "SceneConfig",
            "WallConfig", "UrdfConfig", "JointUncertaintyConfig", "ClearanceConfig"]
 
@@ -116,6 +116,25 @@ class FittingConfig:
     panel_ratio: float = 0.3
     """A part whose thinnest extent is below this fraction of the next one is a panel (a door or drawer
     front): its thin axis is the opening's normal (fitting, joints and refinement read it)."""
+
+
+@dataclass(frozen=True)
+class CoverageConfig:
+    """Whether each fitted shape covers its points (coverage.py); a part outside a bound is warned about."""
+
+    coverage_near_distance: float = 0.02
+    """A point is covered when it lies inside the part's primitive or within this (m) of its surface."""
+    coverage_min_extent: float = 0.02
+    """The points' oriented box is at least this (m) along each axis (a face seen alone has no depth)."""
+    max_mean_surface_distance: float = 0.05
+    """Mean distance (m) from the part's points to its primitive's surface, at most this (a headboard
+    fitted as a cylinder: 57-65 mm; well fitted parts of realistic scans: at most 43 mm)."""
+    min_near_fraction: float = 0.5
+    """Share of the part's points covered, at least this (realistic scans' depth noise, label bleed and
+    outliers leave 60-100 % of a well fitted part's points within 2 cm)."""
+    max_volume_ratio: float = 2.5
+    """Volume of the Eq. 3 primitive over the volume of its points' oriented box, at most this (a
+    cylinder around a half-seen leg reaches about 2)."""
 
 
 @dataclass(frozen=True)
@@ -393,6 +412,7 @@ class ReconConfig:
     scan: ScanConfig = field(default_factory=ScanConfig)
     leveling: LevelingConfig = field(default_factory=LevelingConfig)
     fitting: FittingConfig = field(default_factory=FittingConfig)
+    coverage: CoverageConfig = field(default_factory=CoverageConfig)
     completion: CompletionConfig = field(default_factory=CompletionConfig)
     contacts: ContactConfig = field(default_factory=ContactConfig)
     tree: TreeConfig = field(default_factory=TreeConfig)

@@ -10,6 +10,8 @@ Stages, in order (each a function below; per-object state travels in an :class:`
     build_part_tree    Eq. 4: the maximum spanning arborescence of the contacts (part_tree.py)
     refine             Alg. 1: children rotated / moved onto their parents' planes (refinement.py)
     shape_handles      a handle's bar and posts (knob: cap and stem) off its mount (handle_shapes.py)
+    check_coverage     each part's primitive against its points; a part outside the bounds is named
+                       in a warning (coverage.py)
     place_on_supports  upright correction, then every object resting on the floor or its supporter
     estimate_object_joints  joint type, axis, origin and swept limits (joints.py), template shapes,
                        object frame -> ObjectReconstruction
@@ -32,6 +34,7 @@ from recon.completion import (complete_missing_legs, complete_mounted_parts, com
                               complete_vertical_parts)
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
+from recon.coverage import coverage, coverage_problems
 from recon.fitting import FitScore, fit_part
 from recon.handle_shapes import HandleShapes, mounted_handle_shapes, posed_handle_shapes
 from recon.joint_uncertainty import with_joint_uncertainty
@@ -158,6 +161,7 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
         build_part_tree(state, run)
         refine(state, run)
         shape_handles(state, run)
+        check_coverage(state, run)
         states.append(state)
     run.timings["parts"] = time.perf_counter() - t0
 
@@ -297,6 +301,21 @@ def shape_handles(state: ObjectState, run: _Run) -> None:
     c = run.config
     state.prims, state.handles = mounted_handle_shapes(state.prims, state.labels, state.points, c.handles, c.contacts,
                                                        c.fitting, c.completion, state.name, state.tree.parent)
+
+
+def check_coverage(state: ObjectState, run: _Run) -> None:
+    """Every part's final primitive against its points (coverage.py), before the scene stages move
+    the object; a part outside the bounds is reported by name."""
+    cfg = run.config.coverage
+    for i, prim in state.prims.items():
+        if i not in state.fits or len(state.points.get(i, ())) < 3:
+            continue
+        cov = coverage(prim, state.fits[i].primitive, state.points[i], cfg)
+        log.debug("%s part %d: coverage %s", state.name, i, cov)
+        problems = coverage_problems(cov, cfg)
+        if problems:
+            run.warn(f"{link_name(state.category, state.id, state.labels[i], i)}: the fitted {prim.kind.value} "
+                     f"does not cover its points: {'; '.join(problems)}")
 
 
 # --- scene stages --------------------------------------------------------------------------------------
