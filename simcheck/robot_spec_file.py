@@ -15,7 +15,8 @@ A robot spec file holds the fields of ``planners.RobotSpec`` (``urdf`` relative 
     gripper: {grip_force: 70, pad_friction: 1.0}   # what the grasp can hold
 
 ``gripper`` (optional; default the Franka Hand, see ``planners.robot.GripperModel``) bounds the force an
-executed grasp transmits: ``2 * pad_friction * grip_force`` N.
+executed grasp transmits: ``2 * pad_friction * grip_force`` N. Any other key is an error naming it and
+the closest valid key (:mod:`simcheck.file_schemas`).
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ import json
 from pathlib import Path
 
 from simcheck.errors import RobotBindingError
+from simcheck.file_schemas import ROBOT_SPEC_SCHEMA, check_document
 
 __all__ = ["load_robot_spec"]
 
@@ -32,7 +34,9 @@ def load_robot_spec(spec: str | None):
     """``planners.RobotSpec`` for ``spec`` ("default"/None, or a .yaml/.json file).
 
     Raises:
-        RobotBindingError: unreadable file or fields planners rejects (names the file).
+        RobotBindingError: unreadable file, a missing, ill-typed or unknown field (names the file and the
+            field, and for an unknown field the closest valid one; :data:`simcheck.file_schemas.ROBOT_SPEC_SCHEMA`),
+            or fields planners rejects (names the file).
     """
     import planners
 
@@ -49,8 +53,7 @@ def load_robot_spec(spec: str | None):
             doc = yaml.safe_load(path.read_text())
     except Exception as exc:
         raise RobotBindingError(f"robot spec {path} cannot be parsed: {exc}") from exc
-    if not isinstance(doc, dict) or "urdf" not in doc:
-        raise RobotBindingError(f"robot spec {path}: expected a mapping with at least 'urdf'")
+    check_document(doc, ROBOT_SPEC_SCHEMA, "robot spec", path, RobotBindingError)
     doc = dict(doc)
     doc["urdf"] = (path.parent / doc["urdf"]).resolve()
     for key in ("base_joints", "arm_joints", "finger_joints", "gripper_links", "home"):

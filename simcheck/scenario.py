@@ -9,7 +9,9 @@ state carried from task to task (drawer A stays open while door B is opened).
     seed: 0
     tasks:
       - open-drawer:cabinet3_drawer12_joint
-      - {kind: open-door, joint: cabinet5_door14_joint, amount: 1.2}
+      - {kind: open-door, joint: cabinet5_door14_joint, amount: 1.2}   # also grasp_point, grasp_link
+
+Any other key is an error naming it and the closest valid key (:mod:`simcheck.file_schemas`).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from pathlib import Path
 
 from planners.task import OpenTask, parse_task
 from simcheck.errors import ScenarioError
+from simcheck.file_schemas import SCENARIO_SCHEMA, check_document
 
 __all__ = ["Scenario", "load_scenario"]
 
@@ -55,7 +58,8 @@ def load_scenario(path: str | Path) -> Scenario:
     """Read and check ``SCENARIO.yaml``.
 
     Raises:
-        ScenarioError: missing file, invalid YAML, missing/ill-typed field (names the file and field).
+        ScenarioError: missing file, invalid YAML, a missing, ill-typed or unknown field (names the file and
+            the field, and for an unknown field the closest valid one; :data:`simcheck.file_schemas.SCENARIO_SCHEMA`).
     """
     import yaml
 
@@ -66,22 +70,14 @@ def load_scenario(path: str | Path) -> Scenario:
         doc = yaml.safe_load(path.read_text())
     except yaml.YAMLError as exc:
         raise ScenarioError(f"scenario {path} is not valid YAML: {exc}") from exc
-    if not isinstance(doc, dict):
-        raise ScenarioError(f"scenario {path}: expected a mapping with 'scene' and 'tasks'")
-    if "scene" not in doc:
-        raise ScenarioError(f"scenario {path}: field 'scene' is missing")
-    tasks = doc.get("tasks")
-    if not isinstance(tasks, list) or not tasks:
-        raise ScenarioError(f"scenario {path}: field 'tasks' must be a non-empty list")
+    check_document(doc, SCENARIO_SCHEMA, "scenario", path, ScenarioError)
+    tasks = doc["tasks"]
     base = path.parent
 
     def resolve(p):
         return None if p is None else (base / str(p)).resolve()
 
-    try:
-        seed = int(doc.get("seed", 0))
-    except (TypeError, ValueError):
-        raise ScenarioError(f"scenario {path}: field 'seed' must be an integer, got {doc.get('seed')!r}") from None
+    seed = doc.get("seed", 0)
     robot = str(doc.get("robot", "default"))
     if robot != "default":
         robot = str(resolve(robot))

@@ -119,7 +119,7 @@ def test_scenario_runs_tasks_in_sequence_with_the_world_state_carried(tmp_path):
 def test_scenario_errors_name_the_file_and_field(tmp_path):
     sc = tmp_path / "bad.yaml"
     sc.write_text("scene: x.urdf\n")
-    with pytest.raises(ScenarioError, match=r"bad.yaml: field 'tasks' must be a non-empty list"):
+    with pytest.raises(ScenarioError, match=r"bad.yaml: field 'tasks' is missing"):
         load_scenario(sc)
     sc.write_text("scene: x.urdf\ntasks: [{joint: j}]\n")
     with pytest.raises(ScenarioError, match=r"bad.yaml: tasks\[0\] needs 'kind' and 'joint'"):
