@@ -57,14 +57,18 @@ class PhysicsConfig:
         grasp_force_window: seconds over which the grasp's force is averaged (a running mean at every
             physics step) for the slip test and the recorded ``grasp_force``: a friction grip slips under
             a sustained load, not under a one-step solver impulse.
+        grasp_stiffness: stiffness, N/m, of the spring that holds the grasped point to the tool: the
+            compliance of a real arm under impedance control and of the pads (7000: at the 140 N
+            holding force the handle lags 2 cm, ``CriteriaConfig.grasp_slip_tolerance``).
+        grasp_damping: damping, N*s/m, of that spring.
         grasp_max_turn: the grasp is lost when the handle has turned more than this in the fingers, rad
             (the grasp transmits no torque; 20 deg turns a bar out of flat pads).
         grasp_contact_distance: a finger's contact point with the handle touches when it is at most this
             far, metres (PyBullet keeps contact points up to ``contact_breaking_threshold`` apart).
         grasp_normal_angle: largest angle, rad, between a finger's contact normal and its opening
             direction for the contact to be on the finger's pad (45 deg: a fingertip or finger side
-            touching is 90 deg off; a pad on a round or slightly tilted bar is a few deg off, on a box bar's
-            edge up to ~35 deg: 30 deg refused a truth drawer handle of kitchen seed 2 at 34 deg).
+            touching is 90 deg off; a pad on a round or slightly tilted bar is a few deg off, on a box
+            bar's edge a few tens of deg).
         grasp_min_travel: a finger nearer than this (m or rad) to fully closed was not stopped by the handle.
         grasp_min_width: the handle between the two pads' contact points must be at least this wide, metres.
         robot_position_gain: PyBullet position-control gain of the robot joints.
@@ -95,6 +99,8 @@ class PhysicsConfig:
     gripper_open_time: float = 0.4
     grasp_break_distance: float = 0.06
     grasp_force_window: float = 0.05
+    grasp_stiffness: float = 7000.0
+    grasp_damping: float = 50.0
     grasp_max_turn: float = 0.3490658503988659
     grasp_contact_distance: float = 0.0005
     grasp_normal_angle: float = 0.7853981633974483

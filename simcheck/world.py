@@ -476,6 +476,8 @@ class World:
     def step(self, n: int = 1) -> None:
         """Advance the simulation ``n`` fixed time steps."""
         for _ in range(n):
+            if self._grasp is not None:
+                self._apply_grasp_spring()
             pb.stepSimulation(physicsClientId=self.client)
 
     # ------------------------------------------------------------------ poses and velocities
@@ -592,38 +594,58 @@ class World:
         return self._robot_links.get(link) in self._gripper_idx
 
     # ------------------------------------------------------------------ grasp attachment
-    def attach(self, scene_link: str, max_force: float) -> None:
-        """Join the robot's tool frame origin to the point of ``scene_link`` where it is now (a point-to-point
-        constraint: force, no torque), each of its three rows capped at ``max_force`` N.
+    def attach(self, scene_link: str, max_force: float, stiffness: float, damping: float) -> None:
+        """Hold the point of ``scene_link`` where the robot's tool frame origin is now with a spring to the
+        tool (``stiffness`` N/m, ``damping`` N*s/m: the compliance of a real arm under impedance control
+        and of the finger pads), applied as equal and opposite forces every :meth:`step`; no torque. The
+        spring force is capped at ``max_force`` N: above it the handle slides in the fingers (the held
+        point moves along so that the spring stays at the cap).
 
         While attached, the fingers hold their current opening and do not collide with ``scene_link``:
         the attachment is the grasp, and finger contacts squeezing the same link made the solver fight
         itself. :meth:`detach` restores both."""
         self.detach()
-        T_w_tool = self.robot_link_pose(self.robot_spec.tool_link)
-        T_w_obj = self.scene_link_pose(scene_link)
-        T_tool_obj = np.linalg.inv(T_w_tool) @ T_w_obj
-        # constraint frames are relative to the link's centre of mass (inertial frame)
-        tool_idx = self._robot_links[self.robot_spec.tool_link]
         obj_body, obj_idx = self._scene_link_index(scene_link)
-        T_tool_com = self._com_offset(self.robot, tool_idx)
-        T_obj_com = self._com_offset(obj_body, obj_idx)
-        # parent frame (in tool COM): identity at the tool; child frame (in object COM): the tool pose
-        T_comtool_frame = np.linalg.inv(T_tool_com)
-        T_comobj_frame = np.linalg.inv(T_obj_com) @ np.linalg.inv(T_tool_obj)
-        self._grasp = pb.createConstraint(
-            self.robot, tool_idx, obj_body, obj_idx, pb.JOINT_POINT2POINT, [0, 0, 0],
-            parentFramePosition=T_comtool_frame[:3, 3].tolist(),
-            childFramePosition=T_comobj_frame[:3, 3].tolist(),
-            parentFrameOrientation=_quat_xyzw_from_R(T_comtool_frame[:3, :3]),
-            childFrameOrientation=_quat_xyzw_from_R(T_comobj_frame[:3, :3]), physicsClientId=self.client)
-        pb.changeConstraint(self._grasp, maxForce=float(max_force), physicsClientId=self.client)
+        T_w_obj = self.scene_link_pose(scene_link)
+        p_tool = self.robot_link_position(self.robot_spec.tool_link)
+        p_local = np.linalg.inv(T_w_obj) @ np.append(p_tool, 1.0)
+        self._grasp = {"body": obj_body, "index": obj_idx, "p_local": p_local[:3], "K": float(stiffness),
+                       "D": float(damping), "cap": float(max_force), "force": 0.0, "slid": False}
         self._grasped = (obj_body, obj_idx)
         self._set_finger_collisions(obj_body, obj_idx, enabled=False)
         f = self.finger_q()
         pb.setJointMotorControlArray(self.robot, self._f_idx, pb.POSITION_CONTROL, targetPositions=list(f),
                                      forces=[self.robot_spec.finger_force] * len(f), positionGains=[0.2] * len(f),
                                      physicsClientId=self.client)
+
+    def _point_state(self, body: int, index: int, p_local: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(position (3,) m, velocity (3,) m/s), world frame, of the point ``p_local`` of a link."""
+        s = pb.getLinkState(body, index, computeLinkVelocity=1, computeForwardKinematics=1,
+                            physicsClientId=self.client)
+        T = _T_from_pos_quat(s[4], s[5])
+        p = T[:3, :3] @ p_local + T[:3, 3]
+        v = np.asarray(s[6]) + np.cross(np.asarray(s[7]), p - np.asarray(s[0]))
+        return p, v
+
+    def _apply_grasp_spring(self) -> None:
+        g = self._grasp
+        p_h, v_h = self._point_state(g["body"], g["index"], g["p_local"])
+        tool = self._robot_links[self.robot_spec.tool_link]
+        p_t, v_t = self._point_state(self.robot, tool, np.zeros(3))
+        stretch = p_t - p_h
+        f = g["K"] * stretch + g["D"] * (v_t - v_h)
+        norm = float(np.linalg.norm(f))
+        g["force"] = norm                       # what holding the point would take (before the cap)
+        if norm > g["cap"]:
+            f *= g["cap"] / norm
+            g["slid"] = True
+            s = float(np.linalg.norm(stretch))
+            if s > g["cap"] / g["K"]:           # the held point slides along: the spring stays at the cap
+                p_new = p_t - stretch * (g["cap"] / g["K"] / s)
+                T = self._link_pose(g["body"], g["index"])
+                g["p_local"] = T[:3, :3].T @ (p_new - T[:3, 3])
+        pb.applyExternalForce(g["body"], g["index"], f.tolist(), p_h.tolist(), pb.WORLD_FRAME, physicsClientId=self.client)
+        pb.applyExternalForce(self.robot, tool, (-f).tolist(), p_t.tolist(), pb.WORLD_FRAME, physicsClientId=self.client)
 
     def _set_finger_collisions(self, body: int, index: int, enabled: bool) -> None:
         for f in self._finger_idx:
@@ -637,7 +659,6 @@ class World:
     def detach(self) -> None:
         """Remove the grasp attachment, if any."""
         if self._grasp is not None:
-            pb.removeConstraint(self._grasp, physicsClientId=self.client)
             self._grasp = None
             self._set_finger_collisions(*self._grasped, enabled=True)
 
@@ -646,12 +667,14 @@ class World:
         return self._grasp is not None
 
     def grasp_force(self) -> float:
-        """Norm of the force (N) the grasp attachment applied in the last step (0 when detached): the
-        whole force of the point-to-point constraint's three rows."""
-        if self._grasp is None:
-            return 0.0
-        f = pb.getConstraintState(self._grasp, physicsClientId=self.client)
-        return float(np.linalg.norm(np.asarray(f[:3], dtype=float)))
+        """Norm of the force (N) the grasp spring needed in the last step to hold the grasped point, before
+        the cap at the gripper's holding force (what was transmitted is at most the cap; 0 when detached)."""
+        return 0.0 if self._grasp is None else float(self._grasp["force"])
+
+    @property
+    def grasp_slid(self) -> bool:
+        """The grasp has reached its force cap (the handle slid in the fingers) since it was made."""
+        return self._grasp is not None and bool(self._grasp["slid"])
 
     # ------------------------------------------------------------------ kinematic queries
     @contextlib.contextmanager

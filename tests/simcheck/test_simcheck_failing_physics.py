@@ -59,7 +59,7 @@ def test_a_pull_beyond_the_gripper_slips_the_handle_out():
     assert t.status is Outcome.FAILED
     force = t.criterion("grasp_force")
     assert not force.passed and force.threshold == pytest.approx(2.0) and force.value > 2.0
-    assert "slipped out of the fingers" in t.criterion("grasp_held").detail
+    assert "slid in the fingers" in t.criterion("grasp_held").detail
 
 
 def test_a_wrong_axis_needs_more_than_the_gripper_holds():
@@ -67,8 +67,7 @@ def test_a_wrong_axis_needs_more_than_the_gripper_holds():
     assert t.status is Outcome.FAILED
     force = t.criterion("grasp_force")
     assert force.threshold == pytest.approx(GripperModel().holding_force)
-    assert not force.passed or "slipped" in t.criterion("grasp_held").detail
-    assert force.value < np.sqrt(3) * force.threshold     # each constraint row is capped at the bound
+    assert not force.passed and "slid in the fingers" in t.criterion("grasp_held").detail
 
 
 def _tilted_drawer(tmp_path, slope, upper=1.0):
