@@ -11,7 +11,7 @@ from __future__ import annotations
 import difflib
 from pathlib import Path
 
-__all__ = ["SCENARIO_SCHEMA", "ROBOT_SPEC_SCHEMA", "check_document", "schema_problems"]
+__all__ = ["SCENARIO_SCHEMA", "ROBOT_SPEC_SCHEMA", "check_document", "schema_problems", "unknown_key_hint"]
 
 _NAMES = {"type": "array", "items": {"type": "string"}, "description": "a list of names"}
 _NUMBERS = {"type": "array", "items": {"type": "number"}, "description": "a list of numbers"}
@@ -89,17 +89,24 @@ def _where(path) -> str:
     return out
 
 
+def unknown_key_hint(key, valid) -> str:
+    """``"did you mean 'against'?"`` for the valid key closest to ``key`` (difflib), else the valid keys.
+
+    >>> unknown_key_hint("againts", ["scene", "against", "tasks"])
+    "did you mean 'against'?"
+    """
+    valid = sorted(valid)
+    close = difflib.get_close_matches(str(key), valid, n=1)
+    return f"did you mean {close[0]!r}?" if close else f"valid fields: {', '.join(valid)}"
+
+
 def _problem(error) -> str:
     where = _where(error.absolute_path)
     at = f"{where}: " if where else ""
     if error.validator == "additionalProperties":
-        valid = sorted(error.schema.get("properties", {}))
-        out = []
-        for key in sorted(k for k in error.instance if k not in error.schema.get("properties", {})):
-            close = difflib.get_close_matches(str(key), valid, n=1)
-            hint = f"did you mean {close[0]!r}?" if close else f"valid fields: {', '.join(valid)}"
-            out.append(f"{at}unknown field {key!r} ({hint})")
-        return "; ".join(out)
+        valid = error.schema.get("properties", {})
+        return "; ".join(f"{at}unknown field {key!r} ({unknown_key_hint(key, valid)})"
+                         for key in sorted(k for k in error.instance if k not in valid))
     if error.validator == "required":
         missing = [k for k in error.validator_value if k not in error.instance]
         return "; ".join(f"{at}field {k!r} is missing" for k in missing)

@@ -168,7 +168,9 @@ def _entry(path: Path, line: int, doc: dict, lines: dict) -> Entry:
     if "_fault" in doc and os.environ.get(_FAULTS_ENV) != "1":
         unknown = sorted(set(unknown) | {"_fault"})
     if unknown:
-        raise fail(unknown[0], f"unknown field (known: {', '.join(sorted(_FIELDS - {'_fault'}))})")
+        from simcheck.file_schemas import unknown_key_hint
+
+        raise fail(unknown[0], f"unknown field ({unknown_key_hint(unknown[0], _FIELDS - {'_fault'})})")
     if ("scene" in doc) == ("scan" in doc):
         raise ManifestError(f"{path}:{line}: an entry needs exactly one of 'scene' or 'scan'")
     base = path.parent
