@@ -7,11 +7,20 @@ Each builder returns a list of ``(object_id, category, [(part_id, label, [trimes
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 import trimesh
 
 FRONT = np.array([1.0, 0.0, 0.0])
+
+
+# helper modules beside the tests (recon_*.py) importable under --import-mode=importlib
+_HERE = str(Path(__file__).parent)
+if _HERE not in sys.path:
+    sys.path.insert(0, _HERE)
 
 
 def box(lo, hi) -> trimesh.Trimesh:

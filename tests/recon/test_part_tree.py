@@ -3,27 +3,13 @@ ranking."""
 
 import numpy as np
 import pytest
-from scipy.spatial.transform import Rotation
 
-from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.model import ContactEdge, JointEstimate, JointType, ObjectReconstruction, PartFit
 from recon.part_tree import contact_scores, part_tree
 from recon.primitive import Primitive
 
-CFG = ReconConfig()
-
-
-def box(lo, hi, rotvec=(0, 0, 0)):
-    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
-    T = np.eye(4)
-    T[:3, :3] = Rotation.from_rotvec(rotvec).as_matrix()
-    T[:3, 3] = (lo + hi) / 2
-    return Primitive("box", hi - lo, T)
-
-
-def planes(p):
-    return p.planes(CFG.contacts.cylinder_side_faces)
+from recon_boxes import CFG, box, planes
 
 
 def _cabinet_prims():
