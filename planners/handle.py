@@ -19,14 +19,8 @@ because either finger may come from above); base placement takes the first that 
 The backed-off candidate (for a bar or knob cap whose estimated mount face leaves the fingertips no room
 at its centre) is held ``grasp_backoff`` further out, but never more than ``grasp_backoff_share`` of the
 grasped shape's depth along the approach: the tool frame then stays inside the bar, and the fingertips,
-which reach past the tool frame, still close on it. Measured on the realistic reconstructions of kitchen
-seeds 0-9 (`bench.simcheck_bench`, 73 drawers/doors certified --against the truth): with a fixed 15 mm
-back-off, a 12 mm reconstructed bar standing only 12 mm proud of a front fitted 30 mm too far out (seed
-1, cabinet1_drawer2/4) was grasped 17-19 mm outside the true bar centre and the fingers closed on air
-("fingers closed on 0 (or 1) of 2 required contacts"); the Panda's fingertips reach 7 mm past its tool
-frame, so no back-off beyond ~7 mm + half the bar holds a 14 mm bar even when the bar is estimated exactly.
-With the depth-limited back-off: realistic 47 -> 50 of 73 certified (seed 1 cabinet1_drawer2/4, seed 2
-cabinet1_door2), clean 73/73 and truth 73/73 unchanged, on the same saved scenes.
+which reach past the tool frame, still close on it (why, with the measurements:
+``docs/decisions.md``, "Grasp back-off").
 """
 
 from __future__ import annotations
