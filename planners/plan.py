@@ -27,7 +27,7 @@ from planners.pin_world import PlanningWorld, RobotKinematics
 from planners.robot import RobotSpec
 from planners.scene_urdf import read_scene_urdf
 from planners.stand import StandPose, find_stand_poses
-from planners.task import OpenTask, PlanResult, PlanStatus, Segment, check_task
+from planners.task import OpenTask, PlanResult, PlanStatus, Segment, check_amount, check_task
 from scenes.description import SceneModel
 
 __all__ = ["plan_open_task", "robot_kinematics"]
@@ -57,6 +57,7 @@ def _validate(scene: SceneModel, task: OpenTask, s0: float, cfg: PlannerConfig) 
                              f"upper limit {upper:.4g})")
     if s0 + amount > upper + 1e-9:
         raise TaskJointError(f"{where}: amount {amount:.4g} from {s0:.4g} exceeds the upper limit {upper:.4g}")
+    check_amount(task, amount, scene.path)
     return amount
 
 

@@ -144,6 +144,21 @@ def parse_tasks(tasks: Iterable[str | OpenTask], amounts: Iterable[float] | None
     return tuple(out)
 
 
+#: the largest opening the planners accept: a drawer's travel (m) and a door's swing (rad). A joint range or
+#: an amount beyond these is an input error (a 1e6 m drawer would plan ~1e8 waypoints)
+MAX_DRAWER_TRAVEL = 3.0
+MAX_DOOR_SWING = 2 * math.pi
+
+
+def check_amount(task: "OpenTask", amount: float, source: object) -> None:
+    """Refuse an opening ``amount`` (m for a drawer, rad for a door) beyond :data:`MAX_DRAWER_TRAVEL` /
+    :data:`MAX_DOOR_SWING`; raises :class:`planners.errors.TaskJointError` naming ``source`` and the joint."""
+    bound, unit = (MAX_DRAWER_TRAVEL, "m") if task.kind == "drawer" else (MAX_DOOR_SWING, "rad")
+    if amount > bound:
+        raise TaskJointError(f"{task}: {source}: joint {task.joint!r}: opening by {amount:.4g} {unit} is beyond "
+                             f"the physical bound {bound:.4g} {unit}; fix the joint's limit or give a smaller amount")
+
+
 class _JointLike(Protocol):
     type: str        # "prismatic", "revolute", "continuous", "fixed", ... (or a str enum of those)
     lower: float     # m or rad

@@ -25,6 +25,10 @@ __all__ = ["KNOWN_CATEGORIES", "KNOWN_LABELS", "PartPoints", "ObjectPoints", "Sc
 
 log = logging.getLogger(__name__)
 
+#: a part (or a whole scan) whose points all lie within this distance (m, per axis) is degenerate:
+#: a part is skipped with a warning, a whole scan is refused
+MIN_PART_EXTENT = 1e-3
+
 
 
 @dataclass(frozen=True, eq=False)
@@ -98,8 +102,15 @@ def _read_ply(path: Path) -> dict[str, np.ndarray]:
         raise ScanError(f"{path}: PLY has no 'vertex' element")
     data = raw["vertex"]["data"]
     if isinstance(data, dict):  # ascii: {name: (N, 1)}
-        return {k: np.asarray(v).reshape(-1) for k, v in data.items()}
-    return {k: np.asarray(data[k]).reshape(-1) for k in data.dtype.names}
+        out = {k: np.asarray(v).reshape(-1) for k, v in data.items()}
+    else:
+        out = {k: np.asarray(data[k]).reshape(-1) for k in data.dtype.names}
+    declared = int(raw["vertex"].get("length", -1))
+    read = min((len(v) for v in out.values()), default=0)
+    if declared >= 0 and read != declared:
+        raise ScanError(f"{path}: the PLY header declares {declared} vertices but the file holds {read} "
+                        "(cut short?); re-export or copy the whole file")
+    return out
 
 
 def _read_npz(path: Path) -> dict[str, np.ndarray]:
@@ -116,10 +127,16 @@ def _read_npz(path: Path) -> dict[str, np.ndarray]:
     out = {"x": pts[:, 0], "y": pts[:, 1], "z": pts[:, 2]}
     if "normals" in arrays:
         n = np.asarray(arrays["normals"])
-        out.update(nx=n[:, 0], ny=n[:, 1], nz=n[:, 2]) if n.ndim == 2 and n.shape[1] == 3 else None
+        if n.ndim != 2 or n.shape != (len(pts), 3):
+            raise ScanError(f"{path}: 'normals' must be ({len(pts)}, 3) like 'points', got {n.shape}; "
+                            "fix or drop the array")
+        out.update(nx=n[:, 0], ny=n[:, 1], nz=n[:, 2])
     if "colors" in arrays:
         c = np.asarray(arrays["colors"])
-        out.update(red=c[:, 0], green=c[:, 1], blue=c[:, 2]) if c.ndim == 2 and c.shape[1] >= 3 else None
+        if c.ndim != 2 or len(c) != len(pts) or c.shape[1] < 3:
+            raise ScanError(f"{path}: 'colors' must be ({len(pts)}, 3 or 4) like 'points', got {c.shape}; "
+                            "fix or drop the array")
+        out.update(red=c[:, 0], green=c[:, 1], blue=c[:, 2])
     for k in ("object_id", "part_id"):
         if k in arrays:
             out[k] = np.asarray(arrays[k]).reshape(-1)
@@ -139,17 +156,47 @@ def _read_labels(path: Path) -> list[dict]:
     for i, o in enumerate(doc["objects"]):
         if not isinstance(o, dict) or "id" not in o or "category" not in o or not isinstance(o.get("parts"), list):
             raise ScanError(f"{path}: objects[{i}] needs 'id', 'category' and a 'parts' list")
+        if not _is_int(o["id"]):
+            raise ScanError(f"{path}: objects[{i}] id {o['id']!r} must be an integer (the object_id of its points)")
+        _check_name(path, f"object {o['id']} category", o["category"])
         if o["id"] in seen_obj:
             raise ScanError(f"{path}: object id {o['id']} appears twice")
         seen_obj.add(o["id"])
         for j, p in enumerate(o["parts"]):
             if not isinstance(p, dict) or "id" not in p or "label" not in p:
                 raise ScanError(f"{path}: object {o['id']} parts[{j}] needs 'id' and 'label'")
+            if not _is_int(p["id"]):
+                raise ScanError(f"{path}: object {o['id']} parts[{j}] id {p['id']!r} must be an integer "
+                                "(the part_id of its points)")
+            _check_name(path, f"object {o['id']} part {p['id']} label", p["label"])
             if p["id"] in seen_part:
                 raise ScanError(f"{path}: part id {p['id']} is listed under object {seen_part[p['id']]} "
                                 f"and object {o['id']}; part ids must be unique in the file")
             seen_part[p["id"]] = o["id"]
+        bodies = [p["id"] for p in o["parts"] if str(p["label"]).lower() == "body"]
+        if len(bodies) > 1:
+            raise ScanError(f"{path}: object {o['id']} has {len(bodies)} 'body' parts ({', '.join(map(str, bodies))}); "
+                            "an object has one body: relabel the others (e.g. 'door', 'drawer') or merge them")
     return doc["objects"]
+
+
+#: the longest object category or part label accepted in labels.json (characters); link and joint names
+#: are built from them and URDF readers limit names (:data:`scenes.description.MAX_NAME_LENGTH`)
+MAX_LABEL_LENGTH = 64
+
+
+def _is_int(v) -> bool:
+    """``v`` is a JSON integer (not a bool, string, list or float)."""
+    return isinstance(v, int) and not isinstance(v, bool)
+
+
+def _check_name(path: Path, what: str, value) -> None:
+    """Refuse a category or label that is not a string of at most :data:`MAX_LABEL_LENGTH` characters."""
+    if not isinstance(value, str):
+        raise ScanError(f"{path}: {what} {value!r} must be a string")
+    if len(value) > MAX_LABEL_LENGTH:
+        raise ScanError(f"{path}: {what} is {len(value)} characters long (at most {MAX_LABEL_LENGTH}): "
+                        f"shorten {value[:32]!r}...")
 
 
 def read_scan(scan_path: str | Path, labels_path: str | Path,
@@ -198,16 +245,23 @@ def scan_from_arrays(props: dict[str, np.ndarray], labels: list[dict], *,
         raise ScanError(f"{source}: {int(bad.sum())} points have NaN/inf coordinates "
                         f"(first: point {i}, object {obj[i]}, part {part[i]})")
     extent = float(np.max(pts.max(axis=0) - pts.min(axis=0)))
+    if extent < MIN_PART_EXTENT:
+        raise ScanError(f"{source}: all {n} points lie within {extent:.3g} m of each other; "
+                        "this is not a scan of a room (check the export)")
     if extent > config.max_scene_extent:
         raise ScanError(f"{source}: the scan spans {extent:.1f} units; scans must be in metres "
                         f"(this looks like millimetres: divide the coordinates by 1000)")
     normals = None
     if all(k in props for k in ("nx", "ny", "nz")):
+        if not all(len(props[k]) == n for k in ("nx", "ny", "nz")):
+            raise ScanError(f"{source}: the normals have {len(props['nx'])} rows for {n} points")
         normals = np.stack([props["nx"], props["ny"], props["nz"]], axis=1).astype(np.float64)
         if not np.all(np.isfinite(normals)):
             normals = None
     colors = None
     if all(k in props for k in ("red", "green", "blue")):
+        if not all(len(props[k]) == n for k in ("red", "green", "blue")):
+            raise ScanError(f"{source}: the colours have {len(props['red'])} rows for {n} points")
         colors = np.stack([props["red"], props["green"], props["blue"]], axis=1).astype(np.uint8)
 
     warnings: list[str] = []
@@ -242,6 +296,12 @@ def scan_from_arrays(props: dict[str, np.ndarray], labels: list[dict], *,
             if count < config.min_part_points:
                 warn(f"object {oid} ({cat}) part {pid} ({label}): {count} points, fewer than "
                      f"{config.min_part_points}; the part is skipped")
+                skipped.append(PartPoints(oid, pid, label, pts[mask], None if normals is None else normals[mask]))
+                continue
+            span = float(np.max(np.ptp(pts[mask], axis=0)))
+            if span < MIN_PART_EXTENT:
+                warn(f"object {oid} ({cat}) part {pid} ({label}): its {count} points lie within {span:.3g} m "
+                     f"(less than {MIN_PART_EXTENT} m); the part is skipped")
                 skipped.append(PartPoints(oid, pid, label, pts[mask], None if normals is None else normals[mask]))
                 continue
             if label not in KNOWN_LABELS:

@@ -26,7 +26,7 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "_shape": ["ShapeKind", "Material", "SolidProperties", "Shape", "shape_volume", "shape_inertia",
                "mass_properties"],
     "_model": ["JointType", "Limit", "Dynamics", "Inertial", "Link", "Joint", "SceneModel", "joint_motion"],
-    "_urdf": ["read_urdf", "urdf_text", "urdf_xml", "xml_text", "round_numbers", "write_urdf", "LENGTH_DECIMALS",
+    "_urdf": ["MAX_NAME_LENGTH", "read_urdf", "urdf_text", "urdf_xml", "xml_text", "round_numbers", "write_urdf", "LENGTH_DECIMALS",
               "SIGNIFICANT_DIGITS"],
     "_truth": ["TRUTH_FORMAT", "check_truth_format", "read_truth_doc", "write_truth_doc", "shape_from_truth",
                "truth_shape_dict"],

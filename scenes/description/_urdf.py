@@ -21,10 +21,14 @@ from ._errors import DescriptionError
 from ._model import Dynamics, Inertial, Joint, JointType, Limit, Link, SceneModel
 from ._shape import Material, Shape, ShapeKind
 
-__all__ = ["read_urdf", "urdf_text", "urdf_xml", "xml_text", "round_numbers", "write_urdf", "LENGTH_DECIMALS",
+__all__ = ["MAX_NAME_LENGTH", "read_urdf", "urdf_text", "urdf_xml", "xml_text", "round_numbers", "write_urdf", "LENGTH_DECIMALS",
            "SIGNIFICANT_DIGITS"]
 
 _TYPES = tuple(t.value for t in JointType)
+
+#: the longest link or joint name :func:`read_urdf` accepts (characters); PyBullet crashes on names of a
+#: few thousand characters, and no partscene name comes near this
+MAX_NAME_LENGTH = 255
 
 
 def _yourdfpy():
@@ -171,6 +175,9 @@ def read_urdf(path: str | Path) -> SceneModel:
         for el in root.findall(tag):
             if not el.get("name"):
                 raise DescriptionError(f"{where}: a <{tag}> has no name")
+            if len(el.get("name")) > MAX_NAME_LENGTH:
+                raise DescriptionError(f"{where}: {tag} {el.get('name')[:40]!r}... has a name of "
+                                       f"{len(el.get('name'))} characters (at most {MAX_NAME_LENGTH}): shorten it")
     links = [_link(el, path.parent, where) for el in root.findall("link")]
     joints = [_joint(el, where) for el in root.findall("joint")]
     materials = tuple(_material(yourdfpy.URDF._parse_material(m)) for m in root.findall("material"))

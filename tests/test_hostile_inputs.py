@@ -1,0 +1,194 @@
+"""The hostile-input corpus: each kind of bad input gets a clean, named input error, never a crash, a hang
+or exit 0 on garbage. One parametrised case per kind; everything runs in-process and stops before any
+reconstruction or planning work, so the module takes a few seconds."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from scenes.description import InputError
+
+
+# --- a small labelled scan: a cabinet body (box surface) and a drawer front ---------------------------
+
+def _box_surface(lo, hi, n, rng):
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    pts = rng.uniform(lo, hi, size=(n, 3))
+    axis = rng.integers(0, 3, n)
+    side = rng.integers(0, 2, n)
+    pts[np.arange(n), axis] = np.where(side == 1, hi[axis], lo[axis])
+    return pts
+
+
+def _scan_props():
+    rng = np.random.default_rng(0)
+    body = _box_surface((0, 0, 0), (0.5, 0.6, 0.8), 3000, rng)
+    drawer = _box_surface((-0.02, 0.05, 0.5), (0.0, 0.55, 0.75), 800, rng)
+    pts = np.r_[body, drawer]
+    return {"x": pts[:, 0], "y": pts[:, 1], "z": pts[:, 2],
+            "object_id": np.ones(len(pts), np.int64),
+            "part_id": np.r_[np.full(len(body), 101), np.full(len(drawer), 102)]}
+
+
+LABELS = [{"id": 1, "category": "cabinet", "parts": [{"id": 101, "label": "body"}, {"id": 102, "label": "drawer"}]}]
+
+
+def _write_ply(path: Path, props, binary=False, declared=None):
+    n = len(props["x"])
+    header = (f"ply\nformat {'binary_little_endian' if binary else 'ascii'} 1.0\nelement vertex {declared or n}\n"
+              "property float x\nproperty float y\nproperty float z\nproperty int object_id\nproperty int part_id\n"
+              "end_header\n")
+    rows = "\n".join(f"{x:.6f} {y:.6f} {z:.6f} {o} {p}" for x, y, z, o, p in
+                     zip(props["x"], props["y"], props["z"], props["object_id"], props["part_id"]))
+    path.write_text(header + rows + "\n")
+    return path
+
+
+def _write_labels(path: Path, objects):
+    path.write_text(json.dumps({"objects": objects}))
+    return path
+
+
+# --- recon build cases: (files written into tmp) -> CLI exit 2 with a message ------------------------
+
+def _identical_points(tmp):
+    props = _scan_props()
+    props = dict(props, x=np.full_like(props["x"], 0.3), y=np.full_like(props["y"], 0.3),
+                 z=np.full_like(props["z"], 0.3))
+    return _write_ply(tmp / "scan.ply", props), _write_labels(tmp / "labels.json", LABELS)
+
+
+def _two_bodies(tmp):
+    labels = [{"id": 1, "category": "cabinet", "parts": [{"id": 101, "label": "body"}, {"id": 102, "label": "body"}]}]
+    return _write_ply(tmp / "scan.ply", _scan_props()), _write_labels(tmp / "labels.json", labels)
+
+
+def _ply_cut_short(tmp):
+    props = _scan_props()
+    n = len(props["x"])
+    short = {k: v[: int(0.6 * n)] for k, v in props.items()}
+    return _write_ply(tmp / "scan.ply", short, declared=n), _write_labels(tmp / "labels.json", LABELS)
+
+
+def _labels_ids(bad_id, where):
+    def case(tmp):
+        labels = json.loads(json.dumps(LABELS))
+        if where == "object":
+            labels[0]["id"] = bad_id
+        else:
+            labels[0]["parts"][1]["id"] = bad_id
+        return _write_ply(tmp / "scan.ply", _scan_props()), _write_labels(tmp / "labels.json", labels)
+    return case
+
+
+def _npz(**bad):
+    def case(tmp):
+        props = _scan_props()
+        pts = np.c_[props["x"], props["y"], props["z"]]
+        arrays = dict(points=pts, object_id=props["object_id"], part_id=props["part_id"])
+        arrays.update({k: v(len(pts)) for k, v in bad.items()})
+        np.savez(tmp / "scan.npz", **arrays)
+        return tmp / "scan.npz", _write_labels(tmp / "labels.json", LABELS)
+    return case
+
+
+def _long_label(tmp):
+    labels = json.loads(json.dumps(LABELS))
+    labels[0]["parts"][1]["label"] = "\u00e9tag\u00e8re" * 500
+    return _write_ply(tmp / "scan.ply", _scan_props()), _write_labels(tmp / "labels.json", labels)
+
+
+RECON_CASES = {
+    "all-points-identical": (_identical_points, r"scan.ply: all \d+ points lie within"),
+    "two-body-parts": (_two_bodies, r"labels.json: object 1 has 2 'body' parts \(101, 102\)"),
+    "ascii-ply-cut-short": (_ply_cut_short, r"scan.ply: the PLY header declares 3800 vertices but the file holds 2280"),
+    "labels-object-id-list": (_labels_ids([1], "object"), r"objects\[0\] id \[1\] must be an integer"),
+    "labels-part-id-string": (_labels_ids("102", "part"), r"object 1 parts\[1\] id '102' must be an integer"),
+    "npz-normals-wrong-length": (_npz(normals=lambda n: np.zeros((n - 5, 3))), r"scan.npz: 'normals' must be \(3800, 3\)"),
+    "npz-colors-wrong-length": (_npz(colors=lambda n: np.zeros((n + 1, 3), np.uint8)), r"scan.npz: 'colors' must be \(3800"),
+    "label-thousands-of-characters": (_long_label, r"object 1 part 102 label is 3500 characters long"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(RECON_CASES))
+def test_recon_build_refuses_with_exit_2(case, tmp_path, capsys):
+    from recon.cli import main
+
+    make, message = RECON_CASES[case]
+    scan, labels = make(tmp_path)
+    code = main(["build", str(scan), "--labels", str(labels), "--out", str(tmp_path / "out"), "--no-preview", "-q"])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert "Traceback" not in err
+    assert __import__("re").search(message, err), err
+    assert not (tmp_path / "out" / "scene.urdf").exists()
+
+
+def test_a_part_collapsed_to_a_point_is_a_warning_and_a_skipped_part():
+    from recon.scan import scan_from_arrays
+
+    props = _scan_props()
+    props = {k: v.copy() for k, v in props.items()}
+    drawer = props["part_id"] == 102
+    for k in ("x", "y", "z"):
+        props[k][drawer] = props[k][drawer][0]
+    scan = scan_from_arrays(props, LABELS, source="scan.ply")
+    assert [p.part_id for p in scan.objects[0].parts] == [101]
+    assert [p.part_id for p in scan.objects[0].skipped] == [102]
+    assert any("part 102 (drawer)" in w and "skipped" in w for w in scan.warnings)
+
+
+# --- scene URDF cases: read_urdf / the planner raise an InputError naming the link or joint ------------
+
+def _urdf(tmp: Path, link="drawer", joint="drawer_joint", upper=0.4) -> Path:
+    box = '<collision><geometry><box size="0.4 0.5 0.2"/></geometry></collision>'
+    inertial = '<inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>'
+    text = f"""<robot name="s">
+  <link name="world"/>
+  <link name="body">{inertial}{box}</link>
+  <link name="{link}">{inertial}{box}</link>
+  <joint name="body_joint" type="fixed"><parent link="world"/><child link="body"/></joint>
+  <joint name="{joint}" type="prismatic"><parent link="body"/><child link="{link}"/>
+    <origin xyz="-0.3 0 0.5"/><axis xyz="-1 0 0"/><limit lower="0" upper="{upper}" effort="10" velocity="1"/></joint>
+</robot>"""
+    (tmp / "scene.urdf").write_text(text)
+    return tmp / "scene.urdf"
+
+
+def _long_link(tmp):
+    from scenes.description import read_urdf
+    read_urdf(_urdf(tmp, link="d" * 3000))
+
+
+def _long_joint(tmp):
+    from scenes.description import read_urdf
+    read_urdf(_urdf(tmp, joint="j" * 2100))
+
+
+def _huge_drawer(tmp):
+    from planners.plan import plan_open_task
+    from planners.task import parse_task
+    plan_open_task(None, _urdf(tmp, upper=1e6), parse_task("open-drawer:drawer_joint"))
+
+
+def _huge_amount(tmp):
+    from planners.plan import plan_open_task
+    from planners.task import parse_task
+    plan_open_task(None, _urdf(tmp, upper=1e6), parse_task("open-drawer:drawer_joint", amount=5e5))
+
+
+SCENE_CASES = {
+    "link-name-3000-chars": (_long_link, r"scene.urdf: link 'ddd.*has a name of 3000 characters \(at most 255\)"),
+    "joint-name-2100-chars": (_long_joint, r"scene.urdf: joint 'jjj.*has a name of 2100 characters"),
+    "drawer-upper-1e6-m": (_huge_drawer, r"scene.urdf: joint 'drawer_joint': opening by .* m is beyond the physical bound"),
+    "drawer-amount-5e5-m": (_huge_amount, r"joint 'drawer_joint': opening by 5e\+05 m is beyond"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(SCENE_CASES))
+def test_scene_inputs_raise_a_named_input_error(case, tmp_path):
+    run, message = SCENE_CASES[case]
+    with pytest.raises(InputError, match=message):
+        run(tmp_path)
