@@ -64,6 +64,10 @@ class TaskCertificate:
             first sample; the robot's configuration when the task began if nothing was executed), rad or m
             by joint name. A scenario's task starts where the previous one ended.
         robust: with ``--robust N``, how the plan fared in N sampled worlds (:mod:`simcheck.robust_verdict`).
+        reference_joint: with ``--against``, how the task joint was matched to the reference's
+            (:func:`simcheck.estimate_diff.joint_mapping`: its name, type, limits and ``direction`` +1 / -1,
+            -1 when the reference's axis is opposite the estimate's); None without a reference or when the
+            reference has no joint of that name.
     """
 
     kind: str
@@ -81,6 +85,7 @@ class TaskCertificate:
     start_state: dict = field(default_factory=dict)
     start_robot_q: dict = field(default_factory=dict)
     robust: dict | None = None
+    reference_joint: dict | None = None
 
     @property
     def ok(self) -> bool:
@@ -103,7 +108,8 @@ class TaskCertificate:
                 "start_state": dict(self.start_state), "start_robot_q": dict(self.start_robot_q),
                 "timings": dict(self.timings), "rollout": self.rollout,
                 "images": list(self.images), "criteria": [c.to_dict() for c in self.criteria],
-                **({} if self.robust is None else {"robust": self.robust})}
+                **({} if self.robust is None else {"robust": self.robust}),
+                **({} if self.reference_joint is None else {"reference_joint": dict(self.reference_joint)})}
 
     @classmethod
     def from_dict(cls, d: dict) -> "TaskCertificate":
@@ -116,7 +122,7 @@ class TaskCertificate:
                    seed=int(d.get("seed", 0)), timings=dict(d.get("timings", {})), rollout=d.get("rollout", ""),
                    images=tuple(d.get("images", [])), plan_status=d.get("plan_status", ""),
                    start_state=dict(d.get("start_state", {})), start_robot_q=dict(d.get("start_robot_q", {})),
-                   robust=d.get("robust"))
+                   robust=d.get("robust"), reference_joint=d.get("reference_joint"))
 
 
 @dataclass(frozen=True)

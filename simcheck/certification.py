@@ -28,7 +28,7 @@ from simcheck.certificate import Certificate, TaskCertificate, software_versions
 from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, PhysicsConfig
 from simcheck.criteria import CriterionResult, plan_collision_free, plan_found, rollout_criteria
 from simcheck.errors import RobotBindingError
-from simcheck.estimate_diff import joint_differences
+from simcheck.estimate_diff import joint_differences, joint_mapping
 from simcheck.execute import execute_task, handle_link_for
 from simcheck.keyframes import KeyFrameCamera
 from simcheck.plan_recheck import recheck_plan
@@ -231,7 +231,9 @@ def _run_task(session: Session, task: OpenTask, planner: Callable, seed: int, cr
     cert = session.run_task(task, planner, seed, criteria, out_dir, images, video, start=start)
     q0 = session.last_rollout.robot_q[0] if session.last_rollout is not None else q_now
     timings = cert.timings if load_seconds is None else {**cert.timings, "load_worlds": load_seconds}
-    cert = dataclasses.replace(cert, start_state=state, timings=timings,
+    mapping = (joint_mapping(session.scene_joints[task.joint], session.ref_joints.get(task.joint))
+               if session.against is not None else None)
+    cert = dataclasses.replace(cert, start_state=state, timings=timings, reference_joint=mapping,
                                start_robot_q=dict(zip(session.robot.joint_names, map(float, q0))))
     log.info("%s: %s -- %s", task, cert.status.value, cert.reason)
     return cert

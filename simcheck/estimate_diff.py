@@ -10,7 +10,7 @@ import numpy as np
 
 from simcheck.scene_joints import SceneJoint, axis_angle_deg
 
-__all__ = ["joint_differences", "AXIS_TOLERANCE_DEG", "ORIGIN_TOLERANCE", "LIMIT_TOLERANCE"]
+__all__ = ["joint_differences", "joint_mapping", "AXIS_TOLERANCE_DEG", "ORIGIN_TOLERANCE", "LIMIT_TOLERANCE"]
 
 #: axes closer than this (degrees) are "the same axis"
 AXIS_TOLERANCE_DEG = 2.0
@@ -42,3 +42,21 @@ def joint_differences(est: SceneJoint, ref: SceneJoint | None) -> list[str]:
         out.append(f"the estimated upper limit of {est.name} ({est.upper:.3f} {est.unit}) exceeds the "
                    f"reference's ({ref.upper:.3f} {ref.unit})")
     return out
+
+
+def joint_mapping(est: SceneJoint, ref: SceneJoint | None) -> dict | None:
+    """How ``est`` (the estimate's task joint) was matched to the reference's joint: by name; ``direction``
+    is +1 when the reference's axis points the estimate's way (world frame), -1 when it is opposite (then the
+    estimate's positive opening is the reference's negative one: a file with the other sign convention).
+    None when the reference has no joint of that name.
+
+    >>> import numpy as np
+    >>> j = lambda ax, lo, up: SceneJoint("d", "revolute", "a", "b", lo, up, np.array(ax, float), np.zeros(3))
+    >>> joint_mapping(j([0, 0, 1], 0, 1.57), j([0, 0, -1], -1.57, 0))
+    {'name': 'd', 'type': 'revolute', 'direction': -1, 'lower': -1.57, 'upper': 0.0}
+    """
+    if ref is None:
+        return None
+    direction = 1 if float(np.dot(est.axis_world, ref.axis_world)) >= 0.0 else -1
+    return {"name": ref.name, "type": ref.type, "direction": direction,
+            "lower": float(ref.lower), "upper": float(ref.upper)}
