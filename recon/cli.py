@@ -44,10 +44,11 @@ def main(argv: list[str] | None = None) -> int:
 
     try:
         from recon.config import ReconConfig
-        from recon.output import write_reconstruction
+        from recon.output import check_inputs_not_outputs, write_reconstruction
         from recon.pipeline import reconstruct_scan
         from recon.scan import read_scan
 
+        check_inputs_not_outputs(args.out, (args.scan, args.labels))
         config = ReconConfig()
         scan = read_scan(args.scan, args.labels, config)
         rec = reconstruct_scan(scan, config=config, level_floor=args.level_floor, seed=args.seed, progress=progress)

@@ -11,7 +11,22 @@ from recon.scene_srdf import srdf_string
 from recon.scene_urdf import urdf_string
 from scenes.description import write_bytes_atomic
 
-__all__ = ["write_reconstruction"]
+__all__ = ["OUTPUT_NAMES", "check_inputs_not_outputs", "write_reconstruction"]
+
+#: every file name :func:`write_reconstruction` may write into its output folder
+OUTPUT_NAMES = ("scene.urdf", "scene.srdf", "graph.json", "scene.xml", "preview.png")
+
+
+def check_inputs_not_outputs(out_dir, inputs) -> None:
+    """Refuse (:class:`recon.errors.ScanError`) an input file (scan, labels) that is one of the files the
+    reconstruction would write into ``out_dir``: writing would destroy it."""
+    from recon.errors import ScanError
+
+    targets = {(Path(out_dir) / name).resolve() for name in OUTPUT_NAMES}
+    for path in inputs:
+        if Path(path).resolve() in targets:
+            raise ScanError(f"{path}: this input is where recon writes its {Path(path).name} in --out {out_dir}; "
+                            "move the input or choose another --out")
 
 
 def write_reconstruction(rec: Reconstruction, out_dir, *, preview_scan=None, mjcf: bool = False) -> dict[str, Path]:

@@ -100,7 +100,13 @@ def _long_label(tmp):
     return _write_ply(tmp / "scan.ply", _scan_props()), _write_labels(tmp / "labels.json", labels)
 
 
+def _labels_in_out(tmp):
+    (tmp / "out").mkdir()
+    return _write_ply(tmp / "scan.ply", _scan_props()), _write_labels(tmp / "out" / "graph.json", LABELS)
+
+
 RECON_CASES = {
+    "labels-file-is-out-graph-json": (_labels_in_out, r"graph.json: this input is where recon writes its graph.json"),
     "all-points-identical": (_identical_points, r"scan.ply: all \d+ points lie within"),
     "two-body-parts": (_two_bodies, r"labels.json: object 1 has 2 'body' parts \(101, 102\)"),
     "ascii-ply-cut-short": (_ply_cut_short, r"scan.ply: the PLY header declares 3800 vertices but the file holds 2280"),
@@ -124,6 +130,8 @@ def test_recon_build_refuses_with_exit_2(case, tmp_path, capsys):
     assert "Traceback" not in err
     assert __import__("re").search(message, err), err
     assert not (tmp_path / "out" / "scene.urdf").exists()
+    if case == "labels-file-is-out-graph-json":
+        assert json.loads((tmp_path / "out" / "graph.json").read_text()) == {"objects": LABELS}
 
 
 def test_a_part_collapsed_to_a_point_is_a_warning_and_a_skipped_part():
@@ -192,3 +200,22 @@ def test_scene_inputs_raise_a_named_input_error(case, tmp_path):
     run, message = SCENE_CASES[case]
     with pytest.raises(InputError, match=message):
         run(tmp_path)
+
+
+SIMCHECK_CASES = {
+    "link-name-3000-chars": (dict(link="d" * 3000), r"link 'ddd.*has a name of 3000 characters"),
+    "drawer-upper-1e6-m": (dict(upper=1e6), r"joint 'drawer_joint': opening by .* m is beyond the physical bound"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(SIMCHECK_CASES))
+def test_simcheck_certify_refuses_with_exit_2(case, tmp_path, capsys):
+    from simcheck.cli import main
+
+    urdf_args, message = SIMCHECK_CASES[case]
+    code = main(["certify", str(_urdf(tmp_path, **urdf_args)), "--task", "open-drawer:drawer_joint",
+                 "--out", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert "Traceback" not in err
+    assert __import__("re").search(message, err), err
