@@ -131,11 +131,11 @@ def _bar(geom: Shape) -> tuple[np.ndarray | None, np.ndarray, float]:
     return axis, (lo + hi) / 2, float(np.sort(size)[1])
 
 
-def _outermost(scene, joint, cands, T_world_moving, values):
+def _outermost(scene, joint, cands, T_world_moving, values, direction=1.0):
     """The candidate geometry furthest out along the part's opening direction (a knob's cap rather than its
     stem, a bar rather than its posts); ties go to the larger geometry."""
     centres = [(T_world_moving @ c[2] @ np.append(_bar(c[1])[1], 1.0))[:3] for c in cands]
-    v = outward_direction(scene, joint, np.mean(centres, axis=0), values)
+    v = direction * outward_direction(scene, joint, np.mean(centres, axis=0), values)
     n = v / max(float(np.linalg.norm(v)), 1e-12)
     return max(zip(cands, centres), key=lambda cc: (round(float(cc[1] @ n), 3), _extent(cc[0][1])))[0]
 
@@ -173,8 +173,11 @@ def _name(cand) -> str:
     return (cand[1].name or f"{cand[0]}_{cand[3]}").lower()
 
 
-def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerConfig) -> HandleGrasp:
-    """Find the handle of the part moved by ``task.joint`` with the scene at joint ``values``."""
+def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerConfig,
+                direction: float = 1.0) -> HandleGrasp:
+    """Find the handle of the part moved by ``task.joint`` with the scene at joint ``values``; ``direction``
+    +1 / -1: the joint opens toward increasing / decreasing values (the outward side is where the handle
+    moves when it opens)."""
     j = scene.joints[task.joint]
     moving = j.child
     where = f"{scene.path}: joint {task.joint!r}"
@@ -216,7 +219,7 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
             cands = near
         axis, width, grasp_link, depth_geom = None, 0.0, moving, None
         if cands:
-            best = _outermost(scene, task.joint, cands, T_world_moving, values)
+            best = _outermost(scene, task.joint, cands, T_world_moving, values, direction)
             grasp_link = best[0]
             a, _, width = _bar(best[1])
             axis = None if a is None else best[2][:3, :3] @ a
@@ -227,13 +230,13 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
                 f"{where}: no handle found on moving link {moving!r} (no fixed child link named '*handle*', "
                 f"no single fixed child, no collision geometry named '*handle*'); give OpenTask.grasp_point "
                 f"or grasp_link")
-        best = _outermost(scene, task.joint, cands, T_world_moving, values)
+        best = _outermost(scene, task.joint, cands, T_world_moving, values, direction)
         grasp_link, depth_geom = best[0], best
         a, centre, width = _bar(best[1])
         p_link = (best[2] @ np.append(centre, 1.0))[:3]
         axis = None if a is None else best[2][:3, :3] @ a
     p_world = (T_world_moving @ np.append(p_link, 1.0))[:3]
-    v = outward_direction(scene, task.joint, p_world, values)
+    v = direction * outward_direction(scene, task.joint, p_world, values)
     if np.linalg.norm(v) < cfg.min_handle_lever * (1.0 if j.type == "prismatic" else 1.0):
         raise HandleNotFoundError(f"{where}: the handle at {np.round(p_world, 3).tolist()} does not move when "
                                   f"the joint opens (it lies on the hinge axis)")

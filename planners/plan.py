@@ -43,20 +43,26 @@ def robot_kinematics(spec: RobotSpec) -> RobotKinematics:
 
 def _validate(scene: SceneModel, task: OpenTask, s0: float, cfg: PlannerConfig) -> float:
     """Check the task against the scene (:func:`planners.task.check_task`); return the amount to open from
-    ``s0`` (m or rad)."""
+    ``s0`` (m or rad; negative: toward the lower limit). Without an amount the joint opens toward the limit
+    farther from ``s0`` (ties: the upper one, our scenes' positive-opens convention); a joint without
+    finite limits (``continuous``) opens by ``+cfg.door_max``."""
     j = check_task(task, scene.joints, scene.path)
     where = f"{scene.path}: joint {task.joint!r}"
     lower, upper = j.lower, j.upper
     if not math.isfinite(upper) or not math.isfinite(lower):
-        lower, upper = s0, s0 + (cfg.door_max / cfg.door_fraction)
-    amount = default_amount(task.kind, lower, upper, cfg) if task.amount is None else float(task.amount)
+        lower, upper = s0 - (cfg.door_max / cfg.door_fraction), s0 + (cfg.door_max / cfg.door_fraction)
+    up, down = upper - s0, s0 - lower
     if task.amount is None:
-        amount = min(amount, upper - s0)
-    if not amount > 0:
-        raise TaskJointError(f"{where}: nothing to open (amount {amount:.4g} from current value {s0:.4g}, "
-                             f"upper limit {upper:.4g})")
-    if s0 + amount > upper + 1e-9:
-        raise TaskJointError(f"{where}: amount {amount:.4g} from {s0:.4g} exceeds the upper limit {upper:.4g}")
+        amount = default_amount(task.kind, lower, upper, cfg)
+        amount = min(amount, up) if up >= down else -min(amount, down)
+    else:
+        amount = float(task.amount)
+    if not abs(amount) > 1e-9:
+        raise TaskJointError(f"{where}: nothing to open (current value {s0:.4g}, limits [{lower:.4g}, "
+                             f"{upper:.4g}])")
+    if s0 + amount > upper + 1e-9 or s0 + amount < lower - 1e-9:
+        raise TaskJointError(f"{where}: amount {amount:.4g} from {s0:.4g} leaves the limits [{lower:.4g}, "
+                             f"{upper:.4g}]")
     check_amount(task, amount, scene.path)
     return amount
 
@@ -100,7 +106,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     s0 = float(state.get(task.joint, 0.0))
     amount = _validate(scene, task, s0, cfg)
     kin = robot_kinematics(robot)
-    handle = find_handle(scene, task, state, cfg)
+    handle = find_handle(scene, task, state, cfg, 1.0 if amount > 0 else -1.0)
     world = PlanningWorld(kin, scene, task.joint, set(handle.handle_geoms), state, cfg.clearance)
     rng = np.random.default_rng(seed)
     base = dict(task=task, joint_names=robot.joint_names, amount=amount, start_object_q=s0,
@@ -113,7 +119,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
 
     j = scene.joints[task.joint]
     step = cfg.open_step_prismatic if j.type == "prismatic" else cfg.open_step_revolute
-    s_path = s0 + amount * np.linspace(0.0, 1.0, max(2, int(math.ceil(amount / step)) + 1))
+    s_path = s0 + amount * np.linspace(0.0, 1.0, max(2, int(math.ceil(abs(amount) / step)) + 1))
     T_moving = np.array([world.moving_link_pose(s) for s in s_path])
     T_paths = [T_moving @ T for T in handle.T_link_grasps]
 

@@ -38,8 +38,12 @@ class OpenTask:
     joint : str
         URDF name of the joint to open.
     amount : float or None
-        Target opening (metres / radians, > 0, counted from the joint's current value). ``None``: drawers
-        90% of the joint's range; doors ``min(90% of range, 90 deg)`` (:class:`planners.PlannerConfig`).
+        Target opening (metres / radians, non-zero, counted from the joint's current value; negative
+        opens toward the lower limit, for joints whose files open toward negative values). ``None``:
+        drawers 90% of the joint's range, doors ``min(90% of range, 90 deg)``
+        (:class:`planners.PlannerConfig`), toward the limit farther from the current value (a joint
+        closed at 0 with limits ``[-1.57, 0]`` opens toward -1.57); a ``continuous`` joint opens by
+        ``+door_max`` (90 deg).
     grasp_point : (3,) float or None
         Explicit grasp point (world frame, metres, joint closed) on the moving part.
     grasp_link : str or None
@@ -66,8 +70,9 @@ class OpenTask:
                 amount = float(self.amount)
             except (TypeError, ValueError):
                 amount = math.nan
-            if not (amount > 0 and math.isfinite(amount)):
-                raise TaskSpecError(f"task {self}: amount must be a positive number (m or rad), got {self.amount!r}")
+            if not (amount != 0 and math.isfinite(amount)):
+                raise TaskSpecError(f"task {self}: amount must be a non-zero number (m or rad; negative opens "
+                                    f"toward the lower limit), got {self.amount!r}")
             object.__setattr__(self, "amount", amount)
         if self.grasp_point is not None:
             try:
@@ -154,7 +159,7 @@ def check_amount(task: "OpenTask", amount: float, source: object) -> None:
     """Refuse an opening ``amount`` (m for a drawer, rad for a door) beyond :data:`MAX_DRAWER_TRAVEL` /
     :data:`MAX_DOOR_SWING`; raises :class:`planners.errors.TaskJointError` naming ``source`` and the joint."""
     bound, unit = (MAX_DRAWER_TRAVEL, "m") if task.kind == "drawer" else (MAX_DOOR_SWING, "rad")
-    if amount > bound:
+    if abs(amount) > bound:
         raise TaskJointError(f"{task}: {source}: joint {task.joint!r}: opening by {amount:.4g} {unit} is beyond "
                              f"the physical bound {bound:.4g} {unit}; fix the joint's limit or give a smaller amount")
 

@@ -51,7 +51,8 @@ class TaskCertificate:
         status: the task's :class:`~scenes.outcome.Outcome` (certified, failed, not_planned, unreachable, ...).
         reason: why (names the failed criteria, the joint and links involved, and with ``--against``
             how the estimate differs from the reference).
-        amount: the requested opening, rad or m (``unit``).
+        amount: the requested opening, rad or m (``unit``), counted from the joint's start value: negative
+            when the joint opens toward its lower limit (a file whose joint opens toward negative values).
         criteria: every criterion judged.
         seed: the planning seed.
         timings: seconds by stage ("plan", "recheck", "execute", "total").

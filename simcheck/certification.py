@@ -153,7 +153,10 @@ class Session:
                                         -criteria.opened_fraction, "joint opening reached / requested",
                                         f"the reference {self.against} {what} {task.joint!r}: the part cannot open"))
             return self._judged(task, plan, crit, timings, seed, unit, None, [], est, ref)
-        requested = plan.amount         # the estimate's request, measured along its opening direction
+        # the estimate's request, measured along its opening direction in the world: the joint axis, reversed
+        # for a negative amount (a joint that opens toward its lower limit)
+        sign = 1.0 if plan.amount >= 0 else -1.0
+        requested = abs(float(plan.amount))
         camera = None
         w = self.exec_world
         if out is not None and (images or video):
@@ -170,7 +173,7 @@ class Session:
         t, c0 = time.perf_counter(), time.process_time()
         rollout = execute_task(w, plan, self.physics, requested_amount=requested,
                                opening_type="revolute" if est.type == "continuous" else est.type,
-                               opening_axis=est.axis_world,
+                               opening_axis=sign * np.asarray(est.axis_world, dtype=float),
                                frame_callback=camera.snap if camera else None,
                                sample_callback=on_sample if camera is not None and video else None)
         self.last_rollout = rollout

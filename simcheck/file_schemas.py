@@ -38,8 +38,9 @@ SCENARIO_SCHEMA = {
                     "joint": {"type": "string", "description": "a joint name"},
                     "open-drawer": {"type": "string", "description": "a joint name"},
                     "open-door": {"type": "string", "description": "a joint name"},
-                    "amount": {"type": "number", "exclusiveMinimum": 0,
-                               "description": "a positive opening, m (drawer) or rad (door)"},
+                    "amount": {"type": "number", "not": {"const": 0},
+                               "description": "a non-zero opening, m (drawer) or rad (door); negative "
+                                              "opens toward the lower limit"},
                     "grasp_point": _POINT,
                     "grasp_link": {"type": "string", "description": "a link name"},
                 },

@@ -91,7 +91,7 @@ def test_explicit_amount_and_named_geometry_handle(robot, variants):
     (OpenTask("drawer", "cabinet1_handle13_joint"), r"joint 'cabinet1_handle13_joint' is fixed"),
     (OpenTask("drawer", DOOR), r"joint 'cabinet1_door14_joint' is revolute, but a drawer needs a prismatic"),
     (OpenTask("door", DRAWER), r"joint 'cabinet1_drawer12_joint' is prismatic, but a door needs a revolute"),
-    (OpenTask("drawer", DRAWER, amount=0.5), r"amount 0.5 from 0 exceeds the upper limit 0.35"),
+    (OpenTask("drawer", DRAWER, amount=0.5), r"amount 0.5 from 0 leaves the limits \[0, 0.35\]"),
 ])
 def test_bad_tasks_raise_naming_file_and_joint(robot, fixture_urdf, task, message):
     with pytest.raises(TaskJointError, match=message) as e:

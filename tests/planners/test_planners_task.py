@@ -32,8 +32,8 @@ def test_parse_task_syntax():
 
 @pytest.mark.parametrize("text, message", [
     ("open-door:d@1,2", "grasp point '1,2' must be X,Y,Z"),
-    ("open-drawer:a=-1", "amount must be a positive number"),
-    ("open-drawer:a=inf", "amount must be a positive number"),
+    ("open-drawer:a=0", "amount must be a non-zero number"),
+    ("open-drawer:a=inf", "amount must be a non-zero number"),
     ("open-drawer:a=x", "amount 'x' is not a number"),
     ("drawer:a", "kind must be one of"),
     ("open-drawer", "expected KIND:JOINT"),
@@ -47,7 +47,7 @@ def test_malformed_tasks_raise_an_input_error_naming_the_task(text, message):
 
 
 def test_task_fields_are_checked_on_construction():
-    with pytest.raises(TaskSpecError, match="amount must be a positive number"):
+    with pytest.raises(TaskSpecError, match="amount must be a non-zero number"):
         OpenTask("drawer", DRAWER, amount=0.0)
     with pytest.raises(TaskSpecError, match="grasp_point must be 3 numbers"):
         OpenTask("drawer", DRAWER, grasp_point=(1.0, 2.0))

@@ -39,3 +39,39 @@ def test_a_wrong_estimate_against_its_reference_fails_with_exit_1_naming_the_dif
     assert task["reference_joint"]["type"] == ("prismatic" if case == "type" else "revolute")
     assert task["reference_joint"]["direction"] in (1, -1)
     assert Certificate.from_dict(doc).tasks[0].reference_joint == task["reference_joint"]
+
+
+DRAWER = "cabinet1_drawer12_joint"
+
+
+def _negative_opening(tmp_path):
+    """The fixture cabinet as a file with the other sign convention: the door's and the drawer's axes
+    flipped and their ranges negative ([-1.9, 0] rad, [-0.35, 0] m); the geometry is where it was."""
+    text = CAB.read_text()
+    for joint, axis, new_axis, limit, new_limit in [
+            (DOOR, 'xyz="0 0 -1"', 'xyz="0 0 1"', 'lower="0.0" upper="1.9"', 'lower="-1.9" upper="0.0"'),
+            (DRAWER, 'xyz="1 0 0"', 'xyz="-1 0 0"', 'lower="0.0" upper="0.35"', 'lower="-0.35" upper="0.0"')]:
+        head, rest = text.split(f'<joint name="{joint}"', 1)
+        block, tail = rest.split("</joint>", 1)
+        assert axis in block and limit in block
+        text = head + f'<joint name="{joint}"' + block.replace(axis, new_axis).replace(limit, new_limit) + "</joint>" + tail
+    out = tmp_path / "negative.urdf"
+    out.write_text(text)
+    return out
+
+
+@pytest.mark.parametrize("task, unit", [(f"open-door:{DOOR}", "rad"), (f"open-drawer:{DRAWER}", "m")])
+def test_a_joint_that_opens_toward_negative_values_is_certified_on_its_own_urdf(task, unit, tmp_path):
+    neg = _negative_opening(tmp_path)
+    assert main(["certify", str(neg), "--task", task, "--out", str(tmp_path / "o"), "--no-images"]) == 0
+    t = json.loads((tmp_path / "o" / "certificate.json").read_text())["tasks"][0]
+    assert t["status"] == "certified" and t["amount"] < 0 and t["unit"] == unit     # opened toward the lower limit
+
+
+def test_a_reference_with_the_opposite_sign_convention_is_matched_by_direction(tmp_path):
+    neg = _negative_opening(tmp_path)
+    assert main(["certify", str(CAB), "--task", f"open-door:{DOOR}", "--against", str(neg),
+                 "--out", str(tmp_path / "o"), "--no-images"]) == 0
+    t = json.loads((tmp_path / "o" / "certificate.json").read_text())["tasks"][0]
+    assert t["status"] == "certified" and t["amount"] > 0
+    assert t["reference_joint"] == {"name": DOOR, "type": "revolute", "direction": -1, "lower": -1.9, "upper": 0.0}
