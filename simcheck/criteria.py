@@ -103,7 +103,7 @@ def opened_amount(r: Rollout) -> tuple[float, str]:
 def opened_fraction(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
     """Opening reached at the end / requested amount (see :func:`opened_amount`), at least ``c.opened_fraction``."""
     opened, how = opened_amount(r)
-    frac = opened / r.requested_amount if r.requested_amount > 0 else -math.inf
+    frac = opened / r.requested_amount if r.requested_amount != 0 else -math.inf
     return _judge("opened_fraction", frac, c.opened_fraction, ">=", "",
                   "opening reached at the end (along the planned opening direction) / opening requested",
                   f"{r.joint} opened {opened:.3f} of the requested {r.requested_amount:.3f} "
@@ -114,7 +114,7 @@ def opened_overshoot(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> Criter
     """How far past the request the part ended, as a fraction of the request (0 when not past it); at
     most ``c.opened_overshoot``."""
     opened, how = opened_amount(r)
-    over = max(opened / r.requested_amount - 1.0, 0.0) if r.requested_amount > 0 else math.inf
+    over = max(opened / r.requested_amount - 1.0, 0.0) if r.requested_amount != 0 else math.inf
     return _judge("opened_overshoot", over, c.opened_overshoot, "<=", "",
                   "opening past the request at the end, as a fraction of the request",
                   f"{r.joint} ended {over:.0%} past the requested {r.requested_amount:.3f} (at most "

@@ -37,7 +37,8 @@ class Rollout:
         robot_joint_names: (dof,) robot joint names, the columns of ``robot_q``.
         segment_names: names of the plan's segments; ``segment`` indexes them.
         gripper_links: robot links allowed to touch ``handle_link``.
-        requested_amount: the opening asked for, rad or m (in the executed joint's units).
+        requested_amount: the opening asked for, rad or m (in the executed joint's units); along
+            ``opening_axis`` when one is given, else the joint's signed change (negative: toward its lower limit).
         object_q0: the task joint's value when the task started.
         grasp_note: how the grasp went ("" when the grasp was made and kept).
         time_step: physics time step, seconds.

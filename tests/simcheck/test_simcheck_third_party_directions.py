@@ -75,3 +75,13 @@ def test_a_reference_with_the_opposite_sign_convention_is_matched_by_direction(t
     t = json.loads((tmp_path / "o" / "certificate.json").read_text())["tasks"][0]
     assert t["status"] == "certified" and t["amount"] > 0
     assert t["reference_joint"] == {"name": DOOR, "type": "revolute", "direction": -1, "lower": -1.9, "upper": 0.0}
+
+
+def test_a_negative_request_is_judged_by_the_joint_value_moving_that_way():
+    """Without a planned opening axis (``--robust`` samples), the joint's signed change is judged against
+    the signed request: a drawer asked to open by -0.3 m that moved -0.3 m opened all of it."""
+    from simcheck.criteria import opened_fraction, opened_overshoot
+    from simcheck_rollout_factory import good_rollout
+    r = good_rollout(amount=-0.3)
+    assert opened_fraction(r).passed and opened_fraction(r).value == pytest.approx(1.0)
+    assert opened_overshoot(r).passed
