@@ -13,6 +13,7 @@ as the planner returned it.
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import logging
 import time
 from pathlib import Path
@@ -219,8 +220,18 @@ class Session:
                                timings, rollout or "", tuple(images), plan_status="OK")
 
 
+#: the longest file stem :func:`_safe` makes of a joint name (characters, before its hash suffix)
+_STEM_LENGTH = 100
+
+
 def _safe(name: str) -> str:
-    return "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in name)
+    """A file stem for joint ``name``: the name itself when it is made of ``[A-Za-z0-9._-]`` and short;
+    otherwise the sanitised, shortened name plus 8 hex digits of its SHA-1, so two joints never share a
+    rollout or image file."""
+    safe = "".join(ch if ch.isascii() and (ch.isalnum() or ch in "-_.") else "_" for ch in name)
+    if safe == name and len(name) <= _STEM_LENGTH:
+        return name
+    return f"{safe[:_STEM_LENGTH]}-{hashlib.sha1(name.encode()).hexdigest()[:8]}"
 
 
 def _run_task(session: Session, task: OpenTask, planner: Callable, seed: int, criteria: CriteriaConfig,
@@ -314,6 +325,10 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         raise ValueError("certify: a custom planner needs its robot (robot=...)")
     sim_robot = sim_robot_from_spec(robot)
     out_dir = Path(out) if out is not None else None
+    if out_dir is not None and (out_dir / "certificate.json").is_file():
+        # a run that fails from here on must not leave the previous run's verdict in place
+        log.info("removing the previous %s", out_dir / "certificate.json")
+        (out_dir / "certificate.json").unlink()
     results = []
     if carry_state:
         with Session(scene, against, sim_robot, physics, gui=gui) as session:

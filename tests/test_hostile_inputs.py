@@ -219,3 +219,32 @@ def test_simcheck_certify_refuses_with_exit_2(case, tmp_path, capsys):
     assert code == 2, err
     assert "Traceback" not in err
     assert __import__("re").search(message, err), err
+
+
+@pytest.mark.parametrize("a, b", [("door:1", "door_1"), ("door:1", "door/1"), ("d" * 300, "d" * 301)])
+def test_joints_whose_names_sanitise_alike_get_different_rollout_files(a, b):
+    from simcheck.certification import _safe
+
+    assert _safe(a) != _safe(b)
+    assert all(len(_safe(n)) <= 109 and "/" not in _safe(n) and ":" not in _safe(n) for n in (a, b))
+    assert _safe("cabinet1_drawer2_joint") == "cabinet1_drawer2_joint"
+
+
+def test_a_crashed_certify_leaves_no_previous_verdict(tmp_path):
+    import importlib.util
+
+    from simcheck.certification import certify
+
+    spec = importlib.util.spec_from_file_location(
+        "simcheck_fixture_plans", Path(__file__).parent / "simcheck" / "simcheck_fixture_plans.py")
+    fixture = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(fixture)
+    (tmp_path / "certificate.json").write_text('{"ok": true}')
+
+    def crashing_planner(*args, **kwargs):
+        raise RuntimeError("planner crashed")
+
+    with pytest.raises(RuntimeError, match="planner crashed"):
+        certify(fixture.CABINET, [f"open-drawer:{fixture.DRAWER}"], robot=fixture.ROBOT, out=tmp_path,
+                planner=crashing_planner, images=False)
+    assert not (tmp_path / "certificate.json").exists()
