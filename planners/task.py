@@ -156,7 +156,7 @@ MAX_DOOR_SWING = 2 * math.pi
 
 
 def check_amount(task: "OpenTask", amount: float, source: object) -> None:
-    """Refuse an opening ``amount`` (m for a drawer, rad for a door) beyond :data:`MAX_DRAWER_TRAVEL` /
+    """Refuse an opening ``amount`` (m for a drawer, rad for a door; either sign) whose size is beyond :data:`MAX_DRAWER_TRAVEL` /
     :data:`MAX_DOOR_SWING`; raises :class:`planners.errors.TaskJointError` naming ``source`` and the joint."""
     bound, unit = (MAX_DRAWER_TRAVEL, "m") if task.kind == "drawer" else (MAX_DOOR_SWING, "rad")
     if abs(amount) > bound:

@@ -187,7 +187,15 @@ def _huge_amount(tmp):
     plan_open_task(None, _urdf(tmp, upper=1e6), parse_task("open-drawer:drawer_joint", amount=5e5))
 
 
+def _huge_negative_drawer(tmp):
+    from planners.plan import plan_open_task
+    from planners.task import parse_task
+    (tmp / "scene.urdf").write_text(_urdf(tmp).read_text().replace('lower="0" upper="0.4"', 'lower="-1e6" upper="0"'))
+    plan_open_task(None, tmp / "scene.urdf", parse_task("open-drawer:drawer_joint"))
+
+
 SCENE_CASES = {
+    "drawer-lower-minus-1e6-m": (_huge_negative_drawer, r"joint 'drawer_joint': opening by -.* m is beyond"),
     "link-name-3000-chars": (_long_link, r"scene.urdf: link 'ddd.*has a name of 3000 characters \(at most 255\)"),
     "joint-name-2100-chars": (_long_joint, r"scene.urdf: joint 'jjj.*has a name of 2100 characters"),
     "drawer-upper-1e6-m": (_huge_drawer, r"scene.urdf: joint 'drawer_joint': opening by .* m is beyond the physical bound"),
