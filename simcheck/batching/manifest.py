@@ -28,6 +28,7 @@ the environment variable ``SIMCHECK_BATCH_TEST_FAULTS=1`` is set.
 from __future__ import annotations
 
 import json
+import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -211,8 +212,10 @@ def _entry(path: Path, line: int, doc: dict, lines: dict) -> Entry:
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise fail("seed", f"expected a non-negative integer, got {seed!r}")
     amount = doc.get("amount")
-    if amount is not None and (isinstance(amount, bool) or not isinstance(amount, (int, float)) or not amount > 0):
-        raise fail("amount", f"expected a positive number (m or rad), got {amount!r}")
+    if amount is not None and (isinstance(amount, bool) or not isinstance(amount, (int, float))
+                               or not (amount != 0 and math.isfinite(amount))):
+        raise fail("amount", f"expected a non-zero number (m or rad; negative opens toward the lower limit), "
+                             f"got {amount!r}")
     robot = doc.get("robot", "default")
     if not isinstance(robot, str) or not robot:
         raise fail("robot", f"expected 'default' or a robot spec file, got {robot!r}")

@@ -85,3 +85,13 @@ def test_a_negative_request_is_judged_by_the_joint_value_moving_that_way():
     r = good_rollout(amount=-0.3)
     assert opened_fraction(r).passed and opened_fraction(r).value == pytest.approx(1.0)
     assert opened_overshoot(r).passed
+
+
+def test_an_explicit_negative_amount_opens_toward_the_lower_limit(tmp_path):
+    neg = _negative_opening(tmp_path)
+    assert main(["certify", str(neg), "--task", f"open-drawer:{DRAWER}=-0.2", "--out", str(tmp_path / "o"),
+                 "--no-images"]) == 0
+    t = json.loads((tmp_path / "o" / "certificate.json").read_text())["tasks"][0]
+    assert t["status"] == "certified" and t["amount"] == pytest.approx(-0.2)
+    assert main(["certify", str(neg), "--task", f"open-drawer:{DRAWER}=0.2", "--out", str(tmp_path / "p"),
+                 "--no-images"]) == 2                          # +0.2 leaves the limits [-0.35, 0]
