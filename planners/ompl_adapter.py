@@ -1,6 +1,6 @@
 """The OMPL adapter: joint-space planning between two configurations. The only module importing ``ompl``.
 
-OMPL 2 (nanobind) traps handled here (see STACK.md): the validity callable returns a Python ``bool``;
+OMPL 2 (nanobind) traps handled here: the validity callable returns a Python ``bool``;
 start and goal are checked by the caller before planning (a goal in collision burns the whole time
 budget); the RNG is seeded with ``ompl.util.RNG.setSeed``; planner objects live only inside
 :func:`plan_joint_path`, so nothing leaks at interpreter exit; OMPL's log is set to warnings.

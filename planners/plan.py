@@ -37,7 +37,7 @@ log = logging.getLogger(__name__)
 
 @functools.lru_cache(maxsize=4)
 def robot_kinematics(spec: RobotSpec) -> RobotKinematics:
-    """The (cached) pinocchio model of ``spec``: loading and convexifying meshes takes ~0.2 s."""
+    """The (cached) pinocchio model of ``spec`` (loading and convexifying its meshes is done once per spec)."""
     return RobotKinematics(spec)
 
 

@@ -22,19 +22,13 @@ class PhysicsConfig:
     """Simulation and execution settings (SI units).
 
     Attributes:
-        time_step: physics step, seconds (160 Hz). Measured on the 7 drawers/doors of kitchen seed 0
-            (truth, same plans): 240 Hz with 25 solver iterations ran at 15.6x real time, 160 Hz with 20
-            iterations at 25.3x, with every criterion value still far inside its threshold (worst
-            grasp slip 0.6 mm, handle path deviation 3.4 mm, joint-limit excursion 0.1 mrad); 120 Hz
-            pushed a Panda joint 10 mrad past its limit and was rejected.
+        time_step: physics step, seconds (160 Hz; why: docs/decisions.md, "PyBullet step settings").
         solver_iterations: constraint solver iterations per step (fixed, for determinism; 20 instead of
-            PyBullet's 50, measured as above).
+            PyBullet's 50; see docs/decisions.md, "PyBullet step settings").
         contact_breaking_threshold: distance, metres, within which Bullet keeps contact points and grows
             every collider's bounding box for the broad phase (Bullet's default 0.02). 0.01 m is more than
-            a robot link moves in one step (<= ~6 mm at 1 m/s and 160 Hz), so no contact starts deeper;
-            measured on the 3 slowest door tasks of the 10 benchmark kitchens (best of 2): 21.7-27.2x ->
-            28.7-30.8x real time, every criterion value within 0.1 mm. Bullet keeps this one value per
-            process (a global): every World sets it.
+            a robot link moves in one step (<= ~6 mm at 1 m/s and 160 Hz), so no contact starts deeper.
+            Bullet keeps this one value per process (a global): every World sets it.
         gravity: gravity along world -z, m/s^2.
         scene_joint_damping: extra linear/angular link damping for scene bodies (PyBullet ``changeDynamics``).
         min_joint_friction: emulated Coulomb friction of a scene joint, N or N*m, used when the URDF's

@@ -23,7 +23,7 @@ handle slides in the fingers. The force the spring needed (before the cap) is re
 
 Why a modelled grasp and not finger friction: in PyBullet a pure friction grasp of a thin handle pulled a
 drawer when the base moved but slipped when the arm pulled, unless handle friction, finger force and
-finger coupling were tuned per object (STACK.md); the modelled grasp holds exactly what the gripper
+finger coupling were tuned per object; the modelled grasp holds exactly what the gripper
 holds on any handle.
 """
 

@@ -5,7 +5,7 @@ a floor plane, the scene and the robot URDF with a fixed base at the world origi
 modelled by the robot's base joints). The scene is loaded as separate bodies, not as one multibody: each
 never-moving link is a static single-link body and each articulated subtree (a drawer or door with its
 handle) a small fixed-base body (:mod:`simcheck.scene_bodies`); Bullet then neither integrates nor collides
-static parts with each other (kitchen seed 0: execution 1.2x faster than with one multibody). Link and
+static parts with each other (measured speed: docs/decisions.md, "PyBullet step settings"). Link and
 joint names are kept (a name map inside this module). On load it
 
 * disables the default velocity motors PyBullet puts on every scene joint (they lock drawers and
