@@ -16,6 +16,7 @@ process, which Ray replaces.
 from __future__ import annotations
 
 import ctypes
+import inspect
 import os
 import signal
 import socket
@@ -145,12 +146,13 @@ def certify_job(job: dict) -> dict:
             if job.get("robust") is None:
                 cert = certify(job["scene"], [job["task"]], **kwargs)
             else:   # certify(robust=N) with its sampled worlds run in this worker's one process-pool slot
-                from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS
                 from simcheck.robust import certify_robustly
 
+                defaults = inspect.signature(certify).parameters     # a batch takes certify's own settings
                 cert = certify_robustly(certify, job["scene"], [job["task"]], robust=job["robust"],
                                         min_success=job["min_success"], replay_sample=None, planner=None,
-                                        criteria=DEFAULT_CRITERIA, physics=DEFAULT_PHYSICS, video=False, gui=False,
+                                        criteria=defaults["criteria"].default, physics=defaults["physics"].default,
+                                        planner_config=defaults["planner_config"].default, video=False, gui=False,
                                         workers=1, **kwargs)
         t = cert.tasks[0]
         from scenes.outcome import Outcome

@@ -181,3 +181,31 @@ def test_resume_after_the_driver_is_killed(kitchens, local_ray, tmp_path):
     assert len(after) == len(tasks) and {k: after[k] for k in before} == before              # none lost
     assert result.totals == {"certified": len(tasks)}
     assert not list(results.glob(".tmp-*"))
+
+
+def test_a_robust_entry_runs_certify_robustly_with_certifys_own_settings(tmp_path, monkeypatch):
+    """A manifest entry with ``robust: N`` calls certify_robustly with every setting plain certify would use
+    (criteria, physics, planner_config: certify's defaults), in the worker's one process slot."""
+    import inspect
+
+    import simcheck.robust
+    from simcheck.batching.worker import certify_job
+    from simcheck.certification import certify
+    from simcheck.errors import SimcheckInputError
+
+    real, seen = simcheck.robust.certify_robustly, {}
+
+    def fake(*args, **kwargs):
+        seen.update(inspect.signature(real).bind(*args, **kwargs).arguments)   # TypeError if one is missing
+        raise SimcheckInputError("reached certify_robustly")
+
+    monkeypatch.setattr(simcheck.robust, "certify_robustly", fake)
+    job = {"store": str(tmp_path / "store"), "key": "k", "scene": str(tmp_path / "scene.urdf"), "against": None,
+           "task": DRAWER, "robot": "default", "seed": 0, "amount": None, "images": False, "timeout": None,
+           "memory_mb": None, "attempt": 1, "robust": 3, "min_success": 0.9, "fault": None, "row": {}}
+    rec = certify_job(job)
+    assert (rec["status"], rec["reason"]) == ("unusable", "reached certify_robustly")
+    defaults = inspect.signature(certify).parameters
+    for name in ("criteria", "physics", "planner_config"):
+        assert seen[name] == defaults[name].default
+    assert (seen["robust"], seen["workers"]) == (3, 1)
