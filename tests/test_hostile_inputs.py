@@ -194,7 +194,20 @@ def _huge_negative_drawer(tmp):
     plan_open_task(None, tmp / "scene.urdf", parse_task("open-drawer:drawer_joint"))
 
 
+def _massless_drawer(tmp):
+    from scenes.description import read_urdf
+    text = _urdf(tmp).read_text()
+    i = text.index('<link name="drawer">')
+    read_urdf(_write_text(tmp / "scene.urdf", text[:i] + text[i:].replace('<mass value="1"/>', '<mass value="0"/>', 1)))
+
+
+def _write_text(path, text):
+    path.write_text(text)
+    return path
+
+
 SCENE_CASES = {
+    "drawer-mass-0": (_massless_drawer, r"link 'drawer' \(child of prismatic joint 'drawer_joint'\) has mass 0"),
     "drawer-lower-minus-1e6-m": (_huge_negative_drawer, r"joint 'drawer_joint': opening by -.* m is beyond"),
     "link-name-3000-chars": (_long_link, r"scene.urdf: link 'ddd.*has a name of 3000 characters \(at most 255\)"),
     "joint-name-2100-chars": (_long_joint, r"scene.urdf: joint 'jjj.*has a name of 2100 characters"),

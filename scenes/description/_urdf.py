@@ -180,6 +180,13 @@ def read_urdf(path: str | Path) -> SceneModel:
                                        f"{len(el.get('name'))} characters (at most {MAX_NAME_LENGTH}): shorten it")
     links = [_link(el, path.parent, where) for el in root.findall("link")]
     joints = [_joint(el, where) for el in root.findall("joint")]
+    by_name = {l.name: l for l in links}
+    for j in joints:
+        child = by_name.get(j.child)
+        if j.type.value != "fixed" and child is not None and child.inertial is not None and \
+                not child.inertial.mass > 0:
+            raise DescriptionError(f"{where}: link {j.child!r} (child of {j.type.value} joint {j.name!r}) has mass "
+                                   f"{child.inertial.mass:g}; a moving link needs a positive mass")
     materials = tuple(_material(yourdfpy.URDF._parse_material(m)) for m in root.findall("material"))
     return SceneModel(root.get("name", ""), links, joints, materials, path)
 
