@@ -3,14 +3,12 @@ whether it runs alone or after other tasks of the same command (real planner, mo
 seed 0, an estimate whose door hinge is 1.5 cm off -- a boundary case whose verdict once depended on
 the task run before it)."""
 
-import json
-
 import pytest
 
-import scenes
 from simcheck.certification import certify
 
 import simcheck.estimate_faults as wrong
+from simcheck_kitchen import kitchen_truth
 
 DOOR = "cabinet1_door2_joint"
 DRAWER = "cabinet1_drawer4_joint"
@@ -19,12 +17,7 @@ FRIDGE = "refrigerator3_door14_joint"
 
 @pytest.fixture(scope="module")
 def kitchen(tmp_path_factory):
-    out = tmp_path_factory.mktemp("kitchen0")
-    scenes.make_scene("kitchen", seed=0, scan=False, previews=False, out=out)
-    truth = json.loads((out / "truth.json").read_text())
-    movable = {j["name"] for o in truth["objects"] for j in o["joints"] if j["type"] != "fixed"}
-    assert {DOOR, DRAWER, FRIDGE} <= movable, f"kitchen seed 0 changed: movable joints {sorted(movable)}"
-    return out
+    return kitchen_truth(tmp_path_factory, DOOR, DRAWER, FRIDGE)
 
 
 def _judged(task) -> dict:

@@ -10,16 +10,14 @@ Wrong estimates: a drawer axis 30 deg off, a door hinged on the wrong side, a re
 as prismatic, limits wider than the real ones, a neighbour blocking the swing. Zero false certificates.
 """
 
-import json
-
 import pytest
 
-import scenes
 from scenes.outcome import Outcome
 from simcheck.certification import certify
 from simcheck.rollout import Rollout
 
 import simcheck.estimate_faults as wrong
+from simcheck_kitchen import kitchen_truth
 from simcheck_fixture_plans import DATA
 
 K_DRAWER = "cabinet1_drawer4_joint"
@@ -32,12 +30,7 @@ P_DOOR = "cabinet1_door14_joint"
 
 @pytest.fixture(scope="module")
 def kitchen(tmp_path_factory):
-    out = tmp_path_factory.mktemp("kitchen0")
-    scenes.make_scene("kitchen", seed=0, scan=False, previews=False, out=out)
-    truth = json.loads((out / "truth.json").read_text())
-    movable = {j["name"] for o in truth["objects"] for j in o["joints"] if j["type"] != "fixed"}
-    assert {K_DRAWER, K_FRIDGE, K_MICROWAVE} <= movable, f"kitchen seed 0 changed: movable joints {sorted(movable)}"
-    return out
+    return kitchen_truth(tmp_path_factory, K_DRAWER, K_FRIDGE, K_MICROWAVE)
 
 
 def test_drawer_and_door_of_a_generated_scene_are_certified_on_their_truth(kitchen):
