@@ -19,7 +19,9 @@ PURE = ("scenes", "recon", "planners", "simcheck",
         "planners.task", "planners.config", "planners.errors", "planners.scene_urdf", "planners.robot",
         "planners.handle",
         "simcheck.criteria", "simcheck.certificate", "simcheck.config", "simcheck.errors",
-        "simcheck.scene_joints", "simcheck.rollout", "simcheck.estimate_diff", "simcheck.scenario")
+        "simcheck.scene_joints", "simcheck.rollout", "simcheck.estimate_diff", "simcheck.scenario",
+        "simcheck.scene_bodies", "simcheck.bullet_poses", "simcheck.joint_table", "simcheck.contacts",
+        "simcheck.grasp_spring")
 #: modules that exist once the shared scene description has landed
 LATER = ()
 CLIS = ("scenes.cli", "recon.cli", "simcheck.cli")

@@ -1,5 +1,5 @@
 """Key frames of an executed task: the RECORDED robot and object states of a rollout, drawn by
-PyBullet's CPU renderer through :class:`simcheck.world.World` (the one module that imports pybullet).
+PyBullet's CPU renderer through :class:`simcheck.world.World` (the PyBullet adapter).
 
 Nothing is simulated here: each frame places the robot at ``rollout.robot_q[i]`` and the task joint at
 ``rollout.object_q[i]`` (what physics produced while executing) and takes a picture.

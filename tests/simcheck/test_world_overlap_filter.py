@@ -27,7 +27,7 @@ def test_links_overlapping_as_loaded_are_filtered_and_named_in_a_warning(tmp_pat
 
     path = tmp_path / "third_party.urdf"
     path.write_text(_URDF)
-    with caplog.at_level(logging.WARNING, logger="simcheck.world"), World(path) as world:
+    with caplog.at_level(logging.WARNING, logger="simcheck.scene_loading"), World(path) as world:
         (a, b, depth), = world.disabled_overlaps
     assert {a, b} == {"wall", "drawer"} and 0.005 < depth < 0.015      # the drawer reaches 10 mm into the wall
     assert any("wall" in r.message and "drawer" in r.message and "disabled" in r.message for r in caplog.records)

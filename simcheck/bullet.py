@@ -1,0 +1,114 @@
+"""The ``pybullet`` module, imported with its C-level banner logged, and the few PyBullet calls every
+part of the world adapter shares: reading a body's joint table and a link's pose or point velocity.
+
+Only the world adapter's modules (:mod:`simcheck.world`, :mod:`simcheck.scene_loading`,
+:mod:`simcheck.robot_loading`, :mod:`simcheck.rendering`) import this module; pure modules never do.
+PyBullet's (x, y, z, w) quaternion order and its integer ids stay inside them.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import re
+import tempfile
+
+import numpy as np
+
+from simcheck.bullet_poses import T_from_pos_quat
+from simcheck.joint_table import JointInfo, JointRow, joint_table
+
+__all__ = ["pb", "c_output_logged", "pybullet_said", "pybullet_version", "body_joint_table", "link_pose",
+           "point_state"]
+
+
+@contextlib.contextmanager
+def c_output_logged(what: str):
+    """Send what C code writes to fd 1/2 inside the block (PyBullet's banner, its URDF importer's
+    warnings and parse errors) to this module's logger (debug level) instead of the user's terminal.
+
+    Yields a list that holds that text (one string) once the block has ended, for error messages."""
+    import ctypes
+
+    libc = ctypes.CDLL(None)
+    saved = [os.dup(fd) for fd in (1, 2)]
+    said: list[str] = []
+    with tempfile.TemporaryFile() as sink:
+        try:
+            libc.fflush(None)
+            for fd in (1, 2):
+                os.dup2(sink.fileno(), fd)
+            yield said
+        finally:
+            libc.fflush(None)
+            for fd, keep in zip((1, 2), saved):
+                os.dup2(keep, fd)
+                os.close(keep)
+            sink.seek(0)
+            text = sink.read().decode(errors="replace").strip()
+            said.append(text)
+            if text:
+                logging.getLogger(__name__).debug("%s: pybullet wrote: %s", what, text)
+
+
+def pybullet_said(said: list[str]) -> str:
+    """The last lines PyBullet wrote while failing (its reason), for an error message."""
+    text = re.sub(r"b*3(Error|Warning|Printf)\[[^\]]*\]:?", "\n", "".join(said))
+    lines = list(dict.fromkeys(ln.strip() for ln in text.splitlines() if ln.strip()))
+    return f" (PyBullet: {'; '.join(lines[-3:])})" if lines else ""
+
+
+def _import_pybullet_quietly():
+    """Import pybullet with its C-level "pybullet build time" banner (written to fd 1/2) logged."""
+    with c_output_logged("import pybullet"):
+        import pybullet
+    return pybullet
+
+
+pb = _import_pybullet_quietly()
+
+_JOINT_TYPES = {pb.JOINT_REVOLUTE: "revolute", pb.JOINT_PRISMATIC: "prismatic", pb.JOINT_FIXED: "fixed",
+                pb.JOINT_SPHERICAL: "spherical", pb.JOINT_PLANAR: "planar"}
+
+
+def pybullet_version() -> str:
+    """The installed pybullet version (from the package metadata)."""
+    from importlib.metadata import version
+    return version("pybullet")
+
+
+def body_joint_table(client: int, body: int) -> tuple[dict[str, JointInfo], dict[str, int]]:
+    """(joint name -> :class:`JointInfo`, link name -> PyBullet link index (base: -1)) of ``body``, in
+    PyBullet's joint order (:func:`simcheck.joint_table.joint_table` over ``getJointInfo``)."""
+    base = pb.getBodyInfo(body, physicsClientId=client)[0].decode()
+    rows = []
+    for j in range(pb.getNumJoints(body, physicsClientId=client)):
+        ji = pb.getJointInfo(body, j, physicsClientId=client)
+        rows.append(JointRow(name=ji[1].decode(), type=_JOINT_TYPES.get(ji[2], "unknown"), child_link=ji[12].decode(),
+                             parent_index=ji[16], lower=float(ji[8]), upper=float(ji[9]), max_force=float(ji[10]),
+                             max_velocity=float(ji[11]), damping=float(ji[6]), friction=float(ji[7])))
+    return joint_table(base, rows)
+
+
+def link_pose(client: int, body: int, index: int) -> np.ndarray:
+    """T_world_link (4, 4) of link ``index`` of ``body`` (its URDF link frame; index -1: the base link)."""
+    if index == -1:
+        pos, quat = pb.getBasePositionAndOrientation(body, physicsClientId=client)
+        # base pose is the inertial frame; correct by the local inertial offset
+        dyn = pb.getDynamicsInfo(body, -1, physicsClientId=client)
+        T_world_inertial = T_from_pos_quat(pos, quat)
+        T_link_inertial = T_from_pos_quat(dyn[3], dyn[4])
+        return T_world_inertial @ np.linalg.inv(T_link_inertial)
+    s = pb.getLinkState(body, index, computeForwardKinematics=1, physicsClientId=client)
+    return T_from_pos_quat(s[4], s[5])
+
+
+def point_state(client: int, body: int, index: int, p_local: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(position (3,) m, velocity (3,) m/s), world frame, of the point ``p_local`` (3,) (link frame, m) of
+    link ``index`` (>= 0) of ``body``."""
+    s = pb.getLinkState(body, index, computeLinkVelocity=1, computeForwardKinematics=1, physicsClientId=client)
+    T = T_from_pos_quat(s[4], s[5])
+    p = T[:3, :3] @ p_local + T[:3, 3]
+    v = np.asarray(s[6]) + np.cross(np.asarray(s[7]), p - np.asarray(s[0]))
+    return p, v

@@ -1,0 +1,145 @@
+"""A scene URDF loaded into a PyBullet client as separate bodies (:mod:`simcheck.scene_bodies`), with
+every link and joint addressed by name, the joint friction emulated and the collisions filtered.
+
+On load it
+
+* lets PyBullet validate the whole URDF once and reads its joint table exactly as PyBullet parses it;
+* loads each never-moving link as a static single-link body and each articulated subtree as a small
+  fixed-base body (measured speed: docs/decisions.md, "PyBullet step settings");
+* disables the default velocity motors PyBullet puts on every scene joint (they lock drawers and
+  doors) and replaces them with a zero-velocity motor whose force is the joint's Coulomb friction
+  (PyBullet applies URDF ``damping`` but ignores ``friction``: it is emulated here);
+* disables collisions between a link and its never-moving ancestors, and between scene links that
+  already interpenetrate as loaded deeper than ``overlap_tolerance`` (:func:`simcheck.contacts.deep_overlaps`;
+  a third-party file's links may; partscene's own scene.urdf and truth.urdf keep their links apart,
+  recon.clearance). Each such pair is logged as a warning.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from scenes.description import DescriptionError, read_urdf
+from simcheck.bullet import body_joint_table, c_output_logged, link_pose, pb, pybullet_said
+from simcheck.bullet_poses import quat_xyzw_from_R
+from simcheck.config import PhysicsConfig
+from simcheck.contacts import deep_overlaps
+from simcheck.errors import SceneLoadError
+from simcheck.joint_table import JointInfo
+from simcheck.scene_bodies import ANCHOR, scene_bodies
+
+__all__ = ["LoadedScene", "load_scene"]
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class LoadedScene:
+    """A scene as loaded in one PyBullet client.
+
+    link_at : scene link name -> (body id, link index)
+    names : (body id, link index) -> scene link name
+    static_pose : never-moving link name -> T_world_link (4, 4), metres
+    links : scene link name -> (body id, link index), in URDF order
+    joints : scene joint name -> :class:`JointInfo` (index in its body; -1 for a fixed joint between
+        never-moving links), in URDF order
+    joint_body : scene joint name -> the body id holding it (joints with an index >= 0)
+    disabled_overlaps : (link a, link b, depth m) of each pair whose collisions were disabled as loaded
+    """
+
+    link_at: dict[str, tuple[int, int]]
+    names: dict[tuple[int, int], str]
+    static_pose: dict[str, np.ndarray]
+    links: dict[str, tuple[int, int]]
+    joints: dict[str, JointInfo]
+    joint_body: dict[str, int]
+    disabled_overlaps: tuple[tuple[str, str, float], ...]
+
+
+def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig) -> LoadedScene:
+    """Load ``scene_urdf`` into ``client`` (see the module docstring).
+
+    Raises:
+        SceneLoadError: PyBullet cannot load the file or a part of it, or it cannot be split (names the file).
+    """
+    c = client
+    flags = (pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_USE_SELF_COLLISION
+             | pb.URDF_USE_SELF_COLLISION_EXCLUDE_ALL_PARENTS)
+    try:
+        with c_output_logged(f"loading {scene_urdf}") as said:
+            whole = pb.loadURDF(str(scene_urdf), useFixedBase=True, flags=flags, physicsClientId=c)
+    except pb.error as exc:
+        raise SceneLoadError(f"PyBullet cannot load scene URDF {scene_urdf}: {exc}"
+                             f"{pybullet_said(said)}") from exc
+    joints, links = body_joint_table(c, whole)
+    pb.removeBody(whole, physicsClientId=c)
+    try:
+        parts = scene_bodies(read_urdf(scene_urdf))
+    except DescriptionError as exc:
+        raise SceneLoadError(f"cannot split scene URDF {scene_urdf} into bodies: {exc}") from exc
+    link_at: dict[str, tuple[int, int]] = {}
+    names: dict[tuple[int, int], str] = {}
+    static_pose: dict[str, np.ndarray] = {}
+    joint_at: dict[str, tuple[int, int]] = {}
+    with tempfile.TemporaryDirectory(prefix="partscene_scene_") as tmp:
+        for k, part in enumerate(parts):
+            f = Path(tmp) / f"body{k}.urdf"
+            f.write_text(part.urdf)
+            try:
+                with c_output_logged(f"loading part {k} of {scene_urdf}") as said:
+                    body = pb.loadURDF(str(f), part.T_world_root[:3, 3].tolist(),
+                                       quat_xyzw_from_R(part.T_world_root[:3, :3]), useFixedBase=True,
+                                       flags=flags if part.moving else pb.URDF_USE_INERTIA_FROM_FILE,
+                                       physicsClientId=c)
+            except pb.error as exc:
+                raise SceneLoadError(f"PyBullet cannot load a part of scene URDF {scene_urdf}: {exc}"
+                                     f"{pybullet_said(said)}") from exc
+            bj, bl = body_joint_table(c, body)
+            for name, index in bl.items():
+                if name != ANCHOR:
+                    link_at[name] = (body, index)
+                    names[(body, index)] = name
+            for info in bj.values():
+                joint_at[info.name] = (body, info.index)
+            if not part.moving:
+                static_pose[next(iter(bl))] = link_pose(c, body, -1)
+                continue
+            for info in bj.values():
+                if info.type in ("revolute", "prismatic"):
+                    friction = max(joints[info.name].friction, config.min_joint_friction)
+                    pb.setJointMotorControl2(body, info.index, pb.VELOCITY_CONTROL, targetVelocity=0.0,
+                                             force=friction, physicsClientId=c)
+                    pb.changeDynamics(body, info.index, linearDamping=config.scene_joint_damping,
+                                      angularDamping=config.scene_joint_damping, physicsClientId=c)
+            for ancestor in part.static_ancestors:       # a link never collides with its ancestors
+                if ancestor in static_pose:
+                    for index in bl.values():
+                        pb.setCollisionFilterPair(body, link_at[ancestor][0], index, -1, 0, physicsClientId=c)
+    disabled = _filter_initial_overlaps(c, scene_urdf, names, config.overlap_tolerance)
+    return LoadedScene(
+        link_at=link_at, names=names, static_pose=static_pose,
+        links={name: link_at[name] for name in links},
+        joints={name: dataclasses.replace(info, index=joint_at[name][1] if name in joint_at else -1)
+                for name, info in joints.items()},
+        joint_body={name: joint_at[name][0] for name in joints if name in joint_at}, disabled_overlaps=disabled)
+
+
+def _filter_initial_overlaps(client: int, scene_urdf: Path, names: dict[tuple[int, int], str],
+                             tolerance: float) -> tuple[tuple[str, str, float], ...]:
+    """Disable collision between scene links that interpenetrate as loaded deeper than ``tolerance`` (m);
+    (link a, link b, depth m) of each pair, each logged as a warning."""
+    pb.performCollisionDetection(physicsClientId=client)
+    seen = deep_overlaps(pb.getContactPoints(physicsClientId=client), names, tolerance)
+    for a, b in seen:
+        pb.setCollisionFilterPair(a[0], b[0], a[1], b[1], 0, physicsClientId=client)
+    disabled = tuple((names[a], names[b], depth) for (a, b), depth in seen.items())
+    for a, b, depth in disabled:
+        log.warning("scene %s: links %s and %s overlap by %.1f mm as loaded: collisions between them "
+                    "disabled", scene_urdf, a, b, depth * 1e3)
+    return disabled
