@@ -12,6 +12,11 @@ output of a large scene); :func:`write_urdf` writes it atomically.
 
 from __future__ import annotations
 
+import hashlib
+import io
+import pickle
+import threading
+from collections import OrderedDict
 from pathlib import Path
 
 import numpy as np
@@ -153,20 +158,50 @@ def _joint(el, where: str) -> Joint:
     return Joint(name, JointType(typ), y.parent, y.child, T, axis, limit, dynamics)
 
 
+#: how many parsed files :func:`read_urdf` keeps (see there)
+PARSED_KEPT = 8
+_parsed: OrderedDict[tuple, bytes] = OrderedDict()
+_parsed_lock = threading.Lock()
+
+
 def read_urdf(path: str | Path) -> SceneModel:
     """The :class:`SceneModel` of the URDF file at ``path``.
+
+    The last :data:`PARSED_KEPT` models read are kept (pickled) under the file's path and a SHA-256 of its
+    bytes: reading an unchanged file again returns a fresh copy of the same model without parsing it (a
+    certification reads its scene in the planner, the simulator and the judge); a changed file is parsed
+    anew. Every call returns its own model, so changing one never changes another.
 
     Raises:
         DescriptionError: the file is missing, not XML, or malformed (names the file and the link/joint).
     """
+    path = Path(path)
+    if not path.is_file():
+        raise DescriptionError(f"{path}: URDF file not found")
+    data = path.read_bytes()
+    key = (str(path), str(path.absolute()), hashlib.sha256(data).digest())
+    with _parsed_lock:
+        kept = _parsed.get(key)
+        if kept is not None:
+            _parsed.move_to_end(key)
+    if kept is not None:
+        return pickle.loads(kept)
+    model = _parse_urdf(path, data)
+    with _parsed_lock:
+        _parsed[key] = pickle.dumps(model, protocol=pickle.HIGHEST_PROTOCOL)
+        while len(_parsed) > PARSED_KEPT:
+            _parsed.popitem(last=False)
+    return model
+
+
+def _parse_urdf(path: Path, data: bytes) -> SceneModel:
+    """Parse and check ``data``, the bytes of the URDF file at ``path``."""
     yourdfpy = _yourdfpy()
     from lxml import etree
-    path = Path(path)
     where = str(path)
-    if not path.is_file():
-        raise DescriptionError(f"{where}: URDF file not found")
     try:
-        root = etree.parse(str(path), etree.XMLParser(remove_blank_text=True, remove_comments=True)).getroot()
+        root = etree.parse(io.BytesIO(data), etree.XMLParser(remove_blank_text=True, remove_comments=True),
+                           base_url=str(path)).getroot()
     except etree.XMLSyntaxError as e:
         raise DescriptionError(f"{where}: not valid XML ({e})") from e
     if root.tag != "robot":

@@ -175,3 +175,13 @@ def test_checked_poses_name_what_is_wrong(T, message):
     from scenes.description import check_pose
     with pytest.raises(ValueError, match=message):
         check_pose(T, "T_world_part")
+
+
+def test_reading_an_unchanged_file_again_gives_an_equal_independent_model(tmp_path):
+    path = write_urdf(generated_model(5), tmp_path / "scene.urdf")
+    first, again = read_urdf(path), read_urdf(path)
+    assert again is not first and again.isclose(first, atol=0.0) and again.path == first.path
+    again.joints["joint2"].T_parent_joint[0, 3] += 1.0                 # changing one copy leaves the others
+    assert read_urdf(path).isclose(first, atol=0.0)
+    write_urdf(generated_model(6), path)                                # a changed file is parsed anew
+    assert read_urdf(path).isclose(generated_model(6), atol=1e-9)
