@@ -83,7 +83,7 @@ def main(argv: list[str] | None = None) -> int:
 
     logging.basicConfig(level=logging.WARNING)
     import scenes
-    from simcheck.batching.runner import _movable_tasks
+    from simcheck.batching.runner import all_movable_tasks
 
     root = Path(args.out) if args.out else Path(tempfile.mkdtemp(prefix="batch-bench-"))
     tasks: list[tuple[Path, str]] = []
@@ -92,7 +92,7 @@ def main(argv: list[str] | None = None) -> int:
         d = root / f"kitchen{seed}"
         if not (d / "truth.urdf").is_file():
             scenes.make_scene("kitchen", seed=seed, scan=False, previews=False, out=d)
-        ts = _movable_tasks(d / "truth.urdf")
+        ts = all_movable_tasks(d / "truth.urdf")[0]
         tasks += [(d / "truth.urdf", t) for t in ts]
         lines.append(json.dumps({"scene": str(d / "truth.urdf"), "tasks": ts}))
     manifest = root / "manifest.jsonl"

@@ -33,15 +33,10 @@ def _reconstruction(seed: int, d: Path) -> Path:
 
 
 def _tasks(scene: Path) -> list[str]:
+    from planners.task import movable_joint_tasks
     from simcheck.scene_joints import read_scene_joints
 
-    out = []
-    for name, j in read_scene_joints(scene).items():
-        if j.type == "prismatic":
-            out.append(f"open-drawer:{name}")
-        elif j.type == "revolute":
-            out.append(f"open-door:{name}")
-    return out
+    return [str(t) for t in movable_joint_tasks(read_scene_joints(scene), scene)[0]]
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -18,13 +18,15 @@ import numpy as np
 from planners.errors import TaskJointError, TaskSpecError
 
 __all__ = ["OpenTask", "PlanStatus", "Segment", "PlanResult", "SEGMENT_NAMES", "KINDS", "parse_task",
-           "parse_tasks", "check_task", "ALL_MOVABLE", "movable_joint_tasks"]
+           "parse_tasks", "check_task", "ALL_MOVABLE", "OPENING_KINDS", "movable_joint_tasks"]
 
 #: Segment names in execution order.
 SEGMENT_NAMES = ("approach", "grasp", "open", "release", "retreat")
 
 #: task kind -> the joint type it opens (a door also opens a continuous joint)
 KINDS = {"drawer": "prismatic", "door": "revolute"}
+#: joint type -> the kind of task that opens it (:func:`movable_joint_tasks`)
+OPENING_KINDS = {"prismatic": "drawer", "revolute": "door", "continuous": "door"}
 
 
 @dataclass(frozen=True)
@@ -200,8 +202,9 @@ ALL_MOVABLE = "all-movable"
 
 def movable_joint_tasks(joints: Mapping[str, _JointLike], source: object) -> tuple[tuple[OpenTask, ...], dict[str, str]]:
     """A task for every drawer and door of ``joints`` (name -> joint, in file order): prismatic ->
-    ``open-drawer``, revolute or continuous -> ``open-door``; and the movable joints left out, by name,
-    with why (no opening range: ``upper <= lower``). Fixed and other joint types are not tasks.
+    ``open-drawer``, revolute or continuous -> ``open-door`` (:data:`OPENING_KINDS`); and the movable joints
+    left out, by name, with why (no opening range: ``upper <= lower``; their task would be
+    ``OpenTask(OPENING_KINDS[type], name)``). Fixed and other joint types are not tasks.
 
     >>> from types import SimpleNamespace as J
     >>> tasks, skipped = movable_joint_tasks({"d": J(type="prismatic", lower=0.0, upper=0.3),
@@ -210,16 +213,15 @@ def movable_joint_tasks(joints: Mapping[str, _JointLike], source: object) -> tup
     >>> [str(t) for t in tasks], skipped
     (['open-drawer:d'], {'h': 's.urdf: revolute joint has no opening range (lower 0.0, upper 0.0)'})
     """
-    kinds = {"prismatic": "drawer", "revolute": "door", "continuous": "door"}
     tasks, skipped = [], {}
     for name, j in joints.items():
         jtype = str(getattr(j.type, "value", j.type))
-        if jtype not in kinds:
+        if jtype not in OPENING_KINDS:
             continue
         if not j.upper > j.lower:
             skipped[name] = f"{source}: {jtype} joint has no opening range (lower {j.lower}, upper {j.upper})"
             continue
-        tasks.append(OpenTask(kinds[jtype], name))
+        tasks.append(OpenTask(OPENING_KINDS[jtype], name))
     return tuple(tasks), skipped
 
 

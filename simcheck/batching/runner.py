@@ -28,7 +28,7 @@ from simcheck.batching.keys import file_digest, scan_key, task_key
 from simcheck.batching.manifest import Entry
 from simcheck.batching.store import Store
 
-__all__ = ["Job", "RunSettings", "run_jobs", "jobs_for_entries", "ray_session", "BACKSTOP_FACTOR", "BACKSTOP_SECONDS"]
+__all__ = ["Job", "RunSettings", "run_jobs", "jobs_for_entries", "all_movable_tasks", "ray_session", "BACKSTOP_FACTOR", "BACKSTOP_SECONDS"]
 
 log = logging.getLogger(__name__)
 
@@ -58,16 +58,20 @@ class Job:
     attempt: int = 1
 
 
-def _movable_tasks(urdf: Path) -> list[str]:
+def all_movable_tasks(urdf: Path) -> tuple[list[str], dict[str, str]]:
+    """The tasks ``tasks: all-movable`` means on the scene ``urdf`` (:func:`planners.task.movable_joint_tasks`:
+    prismatic -> open-drawer, revolute or continuous -> open-door), in file order, including those of the
+    movable joints it leaves out; and those left out (task string -> why: no opening range), which a batch
+    records as rows rather than skipping them silently."""
+    from planners.task import OPENING_KINDS, OpenTask, movable_joint_tasks
     from simcheck.scene_joints import read_scene_joints
 
-    out = []
-    for name, j in read_scene_joints(urdf).items():
-        if j.type == "prismatic":
-            out.append(f"open-drawer:{name}")
-        elif j.type == "revolute":
-            out.append(f"open-door:{name}")
-    return out
+    joints = read_scene_joints(urdf)
+    tasks, skipped = movable_joint_tasks(joints, urdf)
+    ok = {t.joint: str(t) for t in tasks}
+    left = {str(OpenTask(OPENING_KINDS[joints[n].type], n)): why for n, why in skipped.items()}
+    order = [ok.get(n) or str(OpenTask(OPENING_KINDS[joints[n].type], n)) for n in joints if n in ok or n in skipped]
+    return order, left
 
 
 def _settings(entry: Entry, settings: RunSettings) -> dict:
@@ -83,7 +87,9 @@ def _settings(entry: Entry, settings: RunSettings) -> dict:
 
 
 def _scene_jobs(entry: Entry, scene: Path, against: Path | None, tasks: list[str], settings: RunSettings,
-                missing: dict[str, str] | None = None) -> list[Job]:
+                missing: dict[str, str] | None = None, unusable: dict[str, str] | None = None) -> list[Job]:
+    """One job per task; a task in ``missing`` (a wrong reconstruction) is recorded ``failed`` and one in
+    ``unusable`` (no opening range to certify) ``unusable``, each with its reason, without running."""
     digests = (file_digest(scene), file_digest(against),
                "default" if entry.robot == "default" else file_digest(entry.robot))
     jobs = []
@@ -96,13 +102,16 @@ def _scene_jobs(entry: Entry, scene: Path, against: Path | None, tasks: list[str
         fixed = None
         if missing and task in missing:
             fixed = {"status": "failed", "reason": missing[task], "certificate": "", "attempts": 0}
+        elif unusable and task in unusable:
+            fixed = {"status": "unusable", "reason": unusable[task], "certificate": "", "attempts": 0}
         jobs.append(Job(key, row, args, fixed))
     return jobs
 
 
-def _scan_tasks(entry: Entry, scene: Path) -> tuple[list[str], dict[str, str]]:
-    """A reconstructed scan's tasks, and why those its reconstruction cannot run fail (it lacks the
-    joint, or models it with another type: the estimate is wrong, so the task fails).
+def _scan_tasks(entry: Entry, scene: Path) -> tuple[list[str], dict[str, str], dict[str, str]]:
+    """A reconstructed scan's tasks, why those its reconstruction cannot run fail (it lacks the joint,
+    models it with another type, or gives it no opening range: the estimate is wrong, so the task
+    fails), and why those of the truth's joints without an opening range are unusable.
 
     ``tasks: all-movable`` means every movable joint of the reconstruction, plus, with a ``truth``,
     every movable joint of the truth that the reconstruction lacks."""
@@ -111,26 +120,35 @@ def _scan_tasks(entry: Entry, scene: Path) -> tuple[list[str], dict[str, str]]:
     from simcheck.scene_joints import read_scene_joints
 
     joints = read_scene_joints(scene)
-    have = {t.split(":", 1)[1]: t for t in _movable_tasks(scene)}
+    have, no_range = all_movable_tasks(scene)
+    unusable: dict[str, str] = {}
     if entry.tasks is None:
-        wanted = list(have.values())
+        wanted = list(have)
         if entry.against is not None:
-            wanted += [t for t in _movable_tasks(entry.against) if t.split(":", 1)[1] not in have]
+            truth, unusable = all_movable_tasks(entry.against)
+            names = {t.split(":", 1)[1] for t in have}
+            wanted += [t for t in truth if t.split(":", 1)[1] not in names]
+            unusable = {t: why for t, why in unusable.items() if t not in have or t in no_range}
     else:
         wanted = list(entry.tasks)
     missing = {}
     for task in wanted:
+        if task in unusable:
+            continue
+        if task in no_range:
+            missing[task] = f"the reconstruction of {entry.name}: {no_range[task]}: {task} cannot be certified"
+            continue
         try:
             parsed = parse_task(task)
         except InputError as exc:
             missing[task] = str(exc)
             continue
         j = joints.get(parsed.joint)
-        if j is None or j.type != KINDS[parsed.kind]:
+        if j is None or KINDS[parsed.kind] != j.type and not (parsed.kind == "door" and j.type == "continuous"):
             what = "no joint" if j is None else f"a {j.type} joint"
             missing[task] = (f"the reconstruction of {entry.name} has {what} {parsed.joint!r}: {parsed.action} "
                              "cannot be certified")
-    return wanted, missing
+    return wanted, missing, unusable
 
 
 def scans_to_reconstruct(entries: list[Entry], store: Store) -> list[Entry]:
@@ -144,7 +162,8 @@ def jobs_for_entries(entries: list[Entry], store: Store, settings: RunSettings) 
     jobs: list[Job] = []
     for e in entries:
         if e.scene is not None:
-            jobs += _scene_jobs(e, e.scene, e.against, list(e.tasks) if e.tasks else _movable_tasks(e.scene), settings)
+            tasks, unusable = (list(e.tasks), {}) if e.tasks else all_movable_tasks(e.scene)
+            jobs += _scene_jobs(e, e.scene, e.against, tasks, settings, unusable=unusable)
             continue
         folder = store.scans / _scan_key(e)
         import json
@@ -156,8 +175,8 @@ def jobs_for_entries(entries: list[Entry], store: Store, settings: RunSettings) 
                             {"status": rec["status"], "reason": f"reconstruction failed: {rec['reason']}",
                              "certificate": "", "attempts": 1}))
             continue
-        tasks, missing = _scan_tasks(e, folder / "scene.urdf")
-        jobs += _scene_jobs(e, folder / "scene.urdf", e.against, tasks, settings, missing)
+        tasks, missing, unusable = _scan_tasks(e, folder / "scene.urdf")
+        jobs += _scene_jobs(e, folder / "scene.urdf", e.against, tasks, settings, missing, unusable)
     return jobs
 
 

@@ -45,8 +45,8 @@ def _manifest(path: Path, entries: list[dict]) -> Path:
 
 
 def _movable(urdf: Path, n: int) -> list[str]:
-    from simcheck.batching.runner import _movable_tasks
-    return sorted(_movable_tasks(urdf))[:n]
+    from simcheck.batching.runner import all_movable_tasks
+    return sorted(all_movable_tasks(urdf)[0])[:n]
 
 
 def test_two_scene_manifest_end_to_end(kitchens, local_ray, tmp_path):
@@ -209,3 +209,22 @@ def test_a_robust_entry_runs_certify_robustly_with_certifys_own_settings(tmp_pat
     for name in ("criteria", "physics", "planner_config"):
         assert seen[name] == defaults[name].default
     assert (seen["robust"], seen["workers"]) == (3, 1)
+
+
+def test_all_movable_records_a_joint_without_opening_range_as_unusable(kitchens, tmp_path):
+    """``tasks: all-movable`` expands with planners.movable_joint_tasks; a movable joint it leaves out (no
+    opening range) becomes an ``unusable`` row naming why, decided without running."""
+    from simcheck.batching.runner import RunSettings, jobs_for_entries
+    from simcheck.batching.store import Store
+
+    text = (kitchens / "k0/truth.urdf").read_text()
+    joint = text.index('<joint name="cabinet1_door2_joint"')
+    limit = text.index("<limit", joint)
+    end = text.index("/>", limit)
+    scene = tmp_path / "scene.urdf"
+    scene.write_text(text[:limit] + '<limit lower="0" upper="0" effort="50" velocity="1"' + text[end:])
+    jobs = jobs_for_entries(read_manifest(_manifest(tmp_path / "m.jsonl", [{"scene": str(scene)}])),
+                            Store(tmp_path / "out"), RunSettings())
+    rows = {j.row["task"]: j.fixed for j in jobs}
+    assert len(rows) == 7 and rows[DRAWER] is None
+    assert rows[DOOR]["status"] == "unusable" and "no opening range" in rows[DOOR]["reason"]
