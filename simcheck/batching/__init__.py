@@ -51,7 +51,7 @@ class BatchResult:
 
 def batch(manifest, out, *, workers: int | None = None, address: str | None = None,
           task_timeout: float | None = DEFAULT_TASK_TIMEOUT, task_memory: float | None = None, retries: int = 1,
-          images: bool = False, junit=None, baseline=None, progress: bool = True) -> BatchResult:
+          images: bool = False, junit=None, baseline=None, progress: bool = True, chunk: int | None = None) -> BatchResult:
     """Certify every task of ``manifest`` into the folder ``out`` (see :mod:`simcheck.batching.manifest`
     for the manifest and :mod:`simcheck.batching.store` for the folder); what ``out`` already holds for
     the same inputs is not computed again.
@@ -65,6 +65,8 @@ def batch(manifest, out, *, workers: int | None = None, address: str | None = No
         images: also render the key-frame PNGs of each task.
         junit: write JUnit XML there; baseline: an older summary.json to list newly failing tasks against.
         progress: show a progress bar (on a terminal).
+        chunk: certifications of one scene per Ray task (None: chosen from the number of tasks and CPUs,
+            :func:`simcheck.batching.runner.chunk_size`).
 
     Raises:
         ManifestError: a malformed manifest entry (names the line and field); nothing was started.
@@ -83,7 +85,10 @@ def batch(manifest, out, *, workers: int | None = None, address: str | None = No
     store = Store(out)
     if store.remove_partial():
         log.info("removed the partial results of an interrupted run")
-    settings = RunSettings(task_timeout, task_memory, retries, images)
+    if chunk is not None and chunk < 1:
+        from simcheck.errors import SimcheckInputError
+        raise SimcheckInputError(f"chunk must be at least 1 task, got {chunk}")
+    settings = RunSettings(task_timeout, task_memory, retries, images, chunk)
     need = scans_to_reconstruct(entries, store)
     jobs = [] if need else jobs_for_entries(entries, store, settings)
     slots = 0

@@ -32,6 +32,8 @@ def add_batch_parser(sub, parents: list[argparse.ArgumentParser] = ()) -> None:
     b.add_argument("--task-memory", type=float, default=None,
                    help="MB of worker memory a task may use before it is stopped as error (default: no limit)")
     b.add_argument("--retries", type=int, default=1, help="reruns of a task whose worker died (default 1)")
+    b.add_argument("--chunk", type=int, default=None,
+                   help="certifications of one scene per Ray task (default: from the task and CPU counts, at most 16)")
     b.add_argument("--images", action="store_true", help="also render each task's key-frame PNGs")
     b.add_argument("--junit", default=None, help="also write JUnit XML here")
     b.add_argument("--baseline", default=None, help="an older summary.json: list the tasks that newly fail")
@@ -48,7 +50,8 @@ def run_batch(args) -> int:
     try:
         result = batch(args.manifest, args.out, workers=args.workers, address=args.address,
                        task_timeout=args.task_timeout or None, task_memory=args.task_memory, retries=args.retries,
-                       images=args.images, junit=args.junit, baseline=args.baseline, progress=not args.quiet)
+                       images=args.images, junit=args.junit, baseline=args.baseline, progress=not args.quiet,
+                       chunk=args.chunk)
     except SimcheckInputError as exc:
         print(f"simcheck: error: {exc}", file=sys.stderr)
         return 2

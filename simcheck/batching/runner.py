@@ -1,12 +1,16 @@
-"""The batch driver on Ray: reconstruct the manifest's scans once, then certify every (scene, task) as
-one Ray task, at most one in flight per CPU of the cluster, skipping what the store already holds.
+"""The batch driver on Ray: reconstruct the manifest's scans once, then certify every (scene, task),
+skipping what the store already holds. The tasks of one scene are sent in chunks (one Ray task runs a
+chunk's certifications one after the other, each stored as soon as it is done; see :func:`chunk_size`),
+at most one chunk in flight per CPU of the cluster.
 
 Faults stay local to their task: an exception, a blown budget (see :mod:`simcheck.batching.worker`) or
 a worker that died (a segfault, ``os._exit``, a lost node) becomes that task's stored ``error`` or
-``timeout``. Only a dead worker is retried (``retries`` times, counted in the record's ``attempts``);
-an exception or a timeout would recur with the same seed. A task running
-:data:`BACKSTOP_FACTOR` x its time budget + :data:`BACKSTOP_SECONDS` (its worker did not even manage
-to end itself) is cancelled with ``ray.cancel(force=True)``.
+``timeout``. When a chunk's worker dies, its first task without a stored result is the one that was
+running: only that task is retried (``retries`` times, counted in the record's ``attempts``) or recorded;
+the chunk's tasks after it are sent again as they were. An exception or a timeout is not retried (it
+would recur with the same seed). A chunk running :data:`BACKSTOP_FACTOR` x its tasks' time budget +
+:data:`BACKSTOP_SECONDS` (its worker did not even manage to end itself) is cancelled with
+``ray.cancel(force=True)``.
 
 Ray is started locally (``num_cpus=workers``) unless ``address`` names a cluster (``auto``, or
 ``ray://host:10001``); a Ray already initialised by the caller is used as it is and left running.
@@ -28,7 +32,7 @@ from simcheck.batching.keys import file_digest, scan_key, task_key
 from simcheck.batching.manifest import Entry
 from simcheck.batching.store import Store
 
-__all__ = ["Job", "RunSettings", "run_jobs", "jobs_for_entries", "all_movable_tasks", "ray_session", "BACKSTOP_FACTOR", "BACKSTOP_SECONDS"]
+__all__ = ["Job", "RunSettings", "run_jobs", "jobs_for_entries", "all_movable_tasks", "chunk_size", "MAX_CHUNK", "ray_session", "BACKSTOP_FACTOR", "BACKSTOP_SECONDS"]
 
 log = logging.getLogger(__name__)
 
@@ -45,6 +49,18 @@ class RunSettings:
     task_memory_mb: float | None = None
     retries: int = 1
     images: bool = False
+    chunk: int | None = None       # tasks per Ray task (None: :func:`chunk_size`)
+
+
+#: the most tasks one Ray task runs when the chunk size is chosen automatically
+MAX_CHUNK = 16
+
+
+def chunk_size(n_tasks: int, slots: int) -> int:
+    """Tasks per Ray task for ``n_tasks`` to run on ``slots`` CPUs: about an eighth of a slot's share, so
+    the driver handles a few Ray tasks per CPU instead of one per certification while the last chunks
+    still spread over every CPU; between 1 and :data:`MAX_CHUNK`."""
+    return max(1, min(MAX_CHUNK, n_tasks // (8 * max(slots, 1))))
 
 
 @dataclass
@@ -303,59 +319,82 @@ def run_jobs(jobs: list[Job], store: Store, settings: RunSettings, slots: int, m
     return progress
 
 
+def _chunks(pending: list[Job], size: int) -> list[list[Job]]:
+    """``pending`` cut into chunks of at most ``size`` jobs of one scene (and reference) each, in order."""
+    out: list[list[Job]] = []
+    for job in pending:
+        same = out and out[-1][0].args["scene"] == job.args["scene"] and out[-1][0].args["against"] == job.args["against"]
+        if same and len(out[-1]) < size:
+            out[-1].append(job)
+        else:
+            out.append([job])
+    return out
+
+
 def _dispatch(pending: list[Job], store: Store, settings: RunSettings, slots: int, bar, progress: Progress) -> None:
     import ray
 
-    from simcheck.batching.worker import certify_job
+    from simcheck.batching.worker import certify_chunk
 
     # with a memory budget, Ray also reserves it (its ``memory`` resource is admission control only: a
     # node runs no more tasks than its memory holds; the budget itself is enforced by the worker's watchdog)
     memory = {"memory": int(settings.task_memory_mb * 2**20)} if settings.task_memory_mb else {}
-    remote = ray.remote(max_retries=0, num_cpus=1, **memory)(certify_job)
+    remote = ray.remote(max_retries=0, num_cpus=1, **memory)(certify_chunk)
     inflight: dict = {}
     cancelled: set = set()
-    backstop = (BACKSTOP_FACTOR * settings.task_timeout + BACKSTOP_SECONDS) if settings.task_timeout else None
-    pending.reverse()
-    while pending or inflight:
-        while pending and len(inflight) < slots:
-            job = pending.pop()
-            args = {**job.args, "store": str(store.root), "key": job.key, "row": job.row, "attempt": job.attempt,
-                    "timeout": settings.task_timeout, "memory_mb": settings.task_memory_mb, "images": settings.images}
-            inflight[remote.remote(args)] = (job, time.monotonic())
+    backstop = (BACKSTOP_FACTOR * settings.task_timeout) if settings.task_timeout else None
+    chunks = _chunks(pending, settings.chunk or chunk_size(len(pending), slots))
+    chunks.reverse()
+    while chunks or inflight:
+        while chunks and len(inflight) < slots:
+            chunk = chunks.pop()
+            args = [{**job.args, "store": str(store.root), "key": job.key, "row": job.row, "attempt": job.attempt,
+                     "timeout": settings.task_timeout, "memory_mb": settings.task_memory_mb,
+                     "images": settings.images} for job in chunk]
+            inflight[remote.remote(args)] = (chunk, time.monotonic())
         refs = list(inflight)
         ready, _ = ray.wait(refs, num_returns=1, timeout=1.0)
-        if ready and len(refs) > 1:   # collect every finished task at once (one wait per batch, not per task)
+        if ready and len(refs) > 1:   # collect every finished chunk at once (one wait per batch, not per chunk)
             ready, _ = ray.wait(refs, num_returns=len(refs), timeout=0)
         for ref in ready:
-            job, _t0 = inflight.pop(ref)
-            status = _collect(ref, job, store, settings, ref in cancelled, pending)
-            if status is None:
-                progress.retried += 1
-                continue
-            progress.counts[status] += 1
-            progress.computed += 1
-            if bar is not None:
-                bar.update(1)
+            chunk, _t0 = inflight.pop(ref)
+            statuses = _collect(ref, chunk, store, settings, ref in cancelled, chunks, progress)
+            for status in statuses:
+                progress.counts[status] += 1
+                progress.computed += 1
+            if bar is not None and statuses:
+                bar.update(len(statuses))
                 bar.set_postfix_str(_counts_text(progress.counts))
         if backstop is not None:
             now = time.monotonic()
-            for ref, (job, t0) in inflight.items():
-                if ref not in cancelled and now - t0 > backstop:
-                    log.warning("%s %s: no answer after %.0f s, cancelling its worker", job.row["scene"],
-                                job.row["task"], now - t0)
+            for ref, (chunk, t0) in inflight.items():
+                if ref not in cancelled and now - t0 > backstop * len(chunk) + BACKSTOP_SECONDS:
+                    log.warning("%s %s: no answer after %.0f s, cancelling its worker", chunk[0].row["scene"],
+                                ", ".join(j.row["task"] for j in chunk), now - t0)
                     ray.cancel(ref, force=True)
                     cancelled.add(ref)
 
 
-def _collect(ref, job: Job, store: Store, settings: RunSettings, cancelled: bool, pending: list) -> str | None:
-    """The status of a finished job (its record is in the store), or None when it was resubmitted."""
+def _collect(ref, chunk: list[Job], store: Store, settings: RunSettings, cancelled: bool, chunks: list,
+             progress: Progress) -> list[str]:
+    """The statuses of a finished chunk's jobs that are done (their records are in the store); the others
+    are queued again in ``chunks``: after a dead worker, the task that was running is retried or recorded
+    (see the module docstring) and the ones after it are queued unchanged."""
     import ray
 
     try:
-        return ray.get(ref)["status"]
+        return [record["status"] for record in ray.get(ref)]
     except ray.exceptions.RayError as exc:
-        if store.has(job.key):   # the worker stored its outcome before ending itself
-            return store.load(job.key)["status"]
+        records = [store.load(job.key) if store.has(job.key) else None for job in chunk]
+        done = [r["status"] for r in records if r is not None]
+        rest = [job for job, r in zip(chunk, records) if r is None]
+        last = max((i for i, r in enumerate(records) if r is not None), default=None)
+        if not rest or (last is not None and records[last].get("worker_ended")):
+            chunks.extend([rest] if rest else [])   # the task that ended its worker stored its own outcome
+            return done
+        job, after = rest[0], rest[1:]
+        if after:
+            chunks.append(after)
         if cancelled:
             status, reason = "timeout", (f"no answer after {BACKSTOP_FACTOR:g} x --task-timeout "
                                          f"{settings.task_timeout:g} s + {BACKSTOP_SECONDS:g} s; its worker was killed")
@@ -363,8 +402,9 @@ def _collect(ref, job: Job, store: Store, settings: RunSettings, cancelled: bool
                               ray.exceptions.LocalRayletDiedError)) and job.attempt <= settings.retries:
             log.warning("%s %s: its worker died (attempt %d); retrying", job.row["scene"], job.row["task"], job.attempt)
             job.attempt += 1
-            pending.append(job)
-            return None
+            progress.retried += 1
+            chunks.append([job])
+            return done
         elif isinstance(exc, ray.exceptions.OutOfMemoryError):
             status, reason = "error", f"killed by Ray's memory monitor (the node ran out of memory): {_first_line(exc)}"
         else:
@@ -374,7 +414,7 @@ def _collect(ref, job: Job, store: Store, settings: RunSettings, cancelled: bool
         now = time.time()
         store.put_result(job.key, lambda tmp: {**job.row, "status": status, "reason": reason, "start": now,
                                                "end": now, "attempts": job.attempt, "certificate": ""})
-        return status
+        return done + [status]
 
 
 def _first_line(exc: BaseException) -> str:

@@ -25,7 +25,7 @@ import time
 import traceback
 from pathlib import Path
 
-__all__ = ["certify_job", "reconstruct_job", "Budget", "TaskTimeout", "TaskMemoryExceeded", "GRACE_SECONDS"]
+__all__ = ["certify_job", "certify_chunk", "reconstruct_job", "Budget", "TaskTimeout", "TaskMemoryExceeded", "GRACE_SECONDS"]
 
 #: seconds a task gets to unwind after its budget is blown before the worker process is ended
 GRACE_SECONDS = 10.0
@@ -131,7 +131,7 @@ def certify_job(job: dict) -> dict:
                 **extra}
 
     def on_kill(status: str, reason: str) -> None:
-        store.put_result(job["key"], lambda tmp: record(status, reason, certificate=""))
+        store.put_result(job["key"], lambda tmp: record(status, reason, certificate="", worker_ended=True))
 
     def certified(tmp: Path) -> dict:
         from simcheck.certification import certify
@@ -176,6 +176,12 @@ def certify_job(job: dict) -> dict:
         store.put_result(job["key"], lambda tmp: record(status, reason, certificate="",
                                                         traceback=traceback.format_exc(limit=8)))
     return store.load(job["key"])
+
+
+def certify_chunk(jobs: list[dict]) -> list[dict]:
+    """:func:`certify_job` of each of ``jobs`` in turn (one Ray task for several certifications, each
+    stored as soon as it is done); returns their stored records."""
+    return [certify_job(job) for job in jobs]
 
 
 def _budget_reason(exc: BaseException) -> str:

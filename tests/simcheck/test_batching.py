@@ -108,6 +108,24 @@ def test_faults_stay_local_to_their_task(kitchens, local_ray, tmp_path, monkeypa
     assert result.exit_code == 1
 
 
+def test_a_worker_death_in_a_chunk_retries_only_the_running_task(kitchens, local_ray, tmp_path, monkeypatch):
+    """Three tasks of one scene in one Ray task: the second segfaults its worker; the first stays done,
+    the second is retried alone (then recorded), the third runs once."""
+    monkeypatch.setenv("SIMCHECK_BATCH_TEST_FAULTS", "1")
+    scene = str(kitchens / "k0/truth.urdf")
+    manifest = _manifest(tmp_path / "m.jsonl", [
+        {"scene": scene, "tasks": [DRAWER]},
+        {"scene": scene, "tasks": [DOOR], "_fault": "segfault"},
+        {"scene": scene, "tasks": [DOOR], "_fault": "raise", "seed": 1},
+    ])
+    result = simcheck.batch(manifest, tmp_path / "out", workers=1, retries=1, progress=False, chunk=3)
+    rows = {(r["line"]): r for r in result.rows}
+    assert rows[1]["status"] == "certified" and rows[1]["attempts"] == 1
+    assert rows[2]["status"] == "error" and rows[2]["attempts"] == 2 and "worker died" in rows[2]["reason"]
+    assert rows[3]["status"] == "error" and rows[3]["attempts"] == 1 and "test fault" in rows[3]["reason"]
+    assert result.retried == 1
+
+
 def test_malformed_entry_exits_2_naming_line_and_field(kitchens, tmp_path, capsys):
     manifest = tmp_path / "bad.yaml"
     manifest.write_text(f"""- scene: {kitchens}/k0/truth.urdf
