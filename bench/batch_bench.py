@@ -1,20 +1,26 @@
-"""Benchmark of ``simcheck batch``: ``python -m bench.batch_bench [--kitchens 4] [--out DIR]``.
+"""Benchmark of ``simcheck batch``: ``python -m bench.batch_bench [--kitchens 8] [--out DIR]``.
 
-Generates kitchens (truth only: each has a cabinet with a door and three drawers, a microwave door and
-two refrigerator doors, so 7 tasks each) and certifies every drawer and door of their truth scenes:
-1. plain ``simcheck.certify`` of each task in this process, one after the other (the reference, and
-   where the time of one certification goes: world set-up, planning, re-check, physics, writing);
+Generates kitchens (truth only: a cabinet with a door and drawers, a microwave door, refrigerator doors;
+about 8 tasks each) and certifies every drawer and door of their truth scenes:
+1. plain ``simcheck.certify`` of each task in this (warm) process, one after the other: the reference,
+   and where one certification's time goes (world set-up, planning, re-check, physics, writing);
 2. ``simcheck.batch`` of the same tasks on a local Ray with 1 worker, then with 2 workers;
 3. the batch again on its finished folder (the resume).
-Prints certifications per core-hour at 1 and 2 workers (wall time x workers, Ray start-up included),
-the speed-up, the per-task overhead over plain certify, the resume time, worker memory, whether every
-batch certificate equals the plain one (criteria to 1e-9), and the issue's targets (YES/NO).
+
+Two kinds of numbers. CPU-time numbers hold on a busy machine: certifications per core-hour of CPU time
+of every process of the batch (this driver, Ray's services, the workers with their imports; Ray's
+start-up is included once per batch and so amortised over its tasks), and the overhead over plain
+certify as the ratio of their CPU times. Wall-time numbers (certifications per core-hour as wall time x
+workers, the 2-core speed-up, the wall overhead) are only meaningful on an idle machine: the output marks
+them ``[idle]`` and prints the load average. Also: resume time, worker memory, and whether every batch
+certificate equals the plain one (criteria to 1e-9); then the issue's targets (YES/NO).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import statistics
 import sys
 import tempfile
@@ -22,6 +28,9 @@ import time
 from pathlib import Path
 
 __all__ = ["main"]
+
+#: certifications per core-hour the issue asks for, and the 2-core speed-up, overhead and resume bounds
+TARGET_PER_HOUR, TARGET_SPEEDUP, TARGET_OVERHEAD, TARGET_RESUME = 5000.0, 1.7, 0.10, 0.10
 
 
 def _plain(tasks: list[tuple[Path, str]], out: Path) -> tuple[float, list, dict]:
@@ -74,16 +83,22 @@ def _same(rows: list[dict], out: Path, plain: list) -> tuple[bool, float]:
     return ok and worst <= 1e-9, worst
 
 
+def _cpu(run: dict) -> float:
+    """CPU seconds of every process of a batch run (driver, Ray services, workers)."""
+    c = run["cpu_seconds"]
+    return c["driver"] + c.get("ray_services", 0.0) + c.get("workers", 0.0)
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m bench.batch_bench", description=__doc__.splitlines()[0])
-    p.add_argument("--kitchens", type=int, default=4, help="generated kitchens (7 tasks each; default 4)")
+    p.add_argument("--kitchens", type=int, default=8, help="generated kitchens (about 8 tasks each; default 8)")
     p.add_argument("--out", default=None, help="keep the files here (default: a temp folder)")
     args = p.parse_args(argv)
     import logging
 
     logging.basicConfig(level=logging.WARNING)
     import scenes
-    from simcheck.batching.runner import all_movable_tasks
+    from simcheck.batching.runner import all_movable_tasks, chunk_size
 
     root = Path(args.out) if args.out else Path(tempfile.mkdtemp(prefix="batch-bench-"))
     tasks: list[tuple[Path, str]] = []
@@ -98,50 +113,70 @@ def main(argv: list[str] | None = None) -> int:
     manifest = root / "manifest.jsonl"
     manifest.write_text("\n".join(lines) + "\n")
     n = len(tasks)
-    import os
-
-    print(f"{n} tasks ({args.kitchens} kitchens, truth scenes), folder {root}; {os.cpu_count()} cores, load "
-          f"average {os.getloadavg()[0]:.1f} (wall-time rates and the speed-up mean little when it exceeds the cores)")
+    load = os.getloadavg()[0]
+    print(f"{n} tasks ({args.kitchens} kitchens, truth scenes), folder {root}; {os.cpu_count()} cores, load average "
+          f"{load:.1f}: numbers marked [idle] are wall-time and only meaningful on an idle machine")
 
     plain_wall, plain, stages = _plain(tasks, root / "plain")
+    plain_cpu = stages["cpu"] * n
     img = _images_cost(*tasks[0], root / "plain")
-    print(f"\nplain certify, one process: {plain_wall:.1f} s, {plain_wall / n:.3f} s a task")
-    print("where one certification's time goes (mean s): " + ", ".join(f"{k} {v:.3f}" for k, v in stages.items()))
-    print(f"the same first task with key-frame images: {img:.3f} s (without: {stages['total']:.3f} s mean)")
+    print(f"\nplain certify, one warm process: {plain_wall:.1f} s wall [idle], {stages['cpu']:.3f} s CPU a task")
+    print("where one certification's time goes (mean wall s): " + ", ".join(
+        f"{k} {v:.3f}" for k, v in stages.items() if k != "cpu"))
+    print(f"the same first task with key-frame images: {img:.3f} s (a batch renders none unless --images)")
 
     w1, r1 = _batch(manifest, root / "batch1", 1)
     w2, r2 = _batch(manifest, root / "batch2", 2)
     wr, rr = _batch(manifest, root / "batch2", 2)
     same1, d1 = _same(r1.rows, root / "batch1", plain)
     same2, d2 = _same(r2.rows, root / "batch2", plain)
-    per_hour1, per_hour2 = n / (w1 / 3600), n / (w2 * 2 / 3600)
-    row_s1 = statistics.mean(r["seconds"] for r in r1.rows if r["seconds"])
-    overhead_total = w1 / plain_wall - 1
-    recs2 = _records(root / "batch2", r2.rows)
-    rss = [r["worker"]["peak_rss_mb"] for r in recs2]
-    cpu2 = sum(r.get("cpu_seconds", 0.0) for r in recs2)
-    cpu_per_hour = n / (cpu2 / 3600)
-    print(f"\nbatch, 1 worker: {w1:.1f} s wall ({r1.totals}), {per_hour1:,.0f} certifications per core-hour")
-    print(f"batch, 2 workers: {w2:.1f} s wall ({r2.totals}), {per_hour2:,.0f} certifications per core-hour")
-    print(f"speed-up on 2 cores: {w1 / w2:.2f}x (load average now {os.getloadavg()[0]:.1f})")
-    print(f"CPU time of the tasks in the workers (2-worker run): {cpu2 / n:.3f} s a task = {cpu_per_hour:,.0f} "
-          f"certifications per CPU-core-hour (plain certify: {stages['cpu']:.3f} s a task of process CPU time)")
-    print(f"overhead over plain certify at 1 worker: {100 * overhead_total:+.1f}% of the wall time "
-          f"(Ray start-up included); a task's own time in the batch {row_s1:.3f} s vs plain {stages['total']:.3f} s")
+    cpu1, cpu2 = _cpu(r1.run), _cpu(r2.run)
+    rate_cpu1, rate_cpu2 = n / (cpu1 / 3600), n / (cpu2 / 3600)
+    rate_wall1, rate_wall2 = n / (w1 / 3600), n / (w2 * 2 / 3600)
+    over_cpu = cpu1 / plain_cpu - 1
+    over_wall = w1 / plain_wall - 1
+    recs1 = _records(root / "batch1", r1.rows)
+    task_cpu = sum(r.get("cpu_seconds", 0.0) for r in recs1)
+    c1 = r1.run["cpu_seconds"]
+    fixed = c1["driver"] + c1.get("ray_services", 0.0)
+    per_worker2 = r2.run["cpu_seconds"].get("per_worker", [])
+    # on an idle machine the 2-worker run takes about its driver + services time plus its busiest worker's
+    est_speedup = cpu1 / (r2.run["cpu_seconds"]["driver"] + r2.run["cpu_seconds"].get("ray_services", 0.0)
+                          + max(per_worker2, default=0.0))
+    rss = [r["worker"]["peak_rss_mb"] for r in _records(root / "batch2", r2.rows)]
+    for w, wall, r, cpu, rate_c, rate_w in ((1, w1, r1, cpu1, rate_cpu1, rate_wall1), (2, w2, r2, cpu2, rate_cpu2, rate_wall2)):
+        c = r.run["cpu_seconds"]
+        print(f"\nbatch, {w} worker{'s' * (w > 1)} ({r.totals}, Ray tasks of {chunk_size(n, w)} certifications): "
+              f"CPU {cpu:.1f} s = driver {c['driver']:.1f} + Ray services {c.get('ray_services', 0):.1f} + workers "
+              f"{c.get('workers', 0):.1f} ({', '.join(f'{x:.1f}' for x in c.get('per_worker', []))})")
+        print(f"  {rate_c:,.0f} certifications per core-hour of CPU time; wall {wall:.1f} s = {rate_w:,.0f} per "
+              f"core-hour [idle]")
+    print(f"\nthe tasks' own CPU time in the 1-worker run: {task_cpu / n:.3f} s a task (plain {stages['cpu']:.3f} s); "
+          f"per batch, driver + Ray services {fixed:.1f} s and worker imports/idle "
+          f"{c1.get('workers', 0.0) - task_cpu:.1f} s")
+    print(f"overhead over plain certify at 1 worker: {100 * over_cpu:+.1f}% of CPU time (Ray start-up once per batch, "
+          f"amortised over these {n} tasks); {100 * over_wall:+.1f}% of wall time [idle]")
+    print(f"speed-up on 2 cores: {w1 / w2:.2f}x wall [idle] (load average now {os.getloadavg()[0]:.1f}); estimated "
+          f"from CPU times (driver + services + busiest worker): {est_speedup:.2f}x")
     print(f"resume of the finished batch: {wr:.2f} s = {100 * wr / w2:.1f}% of its first run "
           f"(computed {rr.computed}, resumed {rr.resumed})")
     print(f"worker peak resident memory: median {statistics.median(rss):.0f} MB, max {max(rss):.0f} MB")
     print(f"batch certificates equal to plain certify (criteria to 1e-9): 1 worker {same1} (max diff {d1:.2g}), "
           f"2 workers {same2} (max diff {d2:.2g})")
 
-    targets = [(f">= 5,000 certifications per core-hour of task CPU time ({cpu_per_hour:,.0f})", cpu_per_hour >= 5000),
-               (f">= 5,000 certifications per core-hour (1 worker: {per_hour1:,.0f})", per_hour1 >= 5000),
-               (f">= 5,000 certifications per core-hour (2 workers: {per_hour2:,.0f})", per_hour2 >= 5000),
-               (f"speed-up on 2 cores >= 1.7x ({w1 / w2:.2f}x)", w1 / w2 >= 1.7),
-               (f"overhead over plain certify <= 10% ({100 * overhead_total:+.1f}%)", overhead_total <= 0.10),
-               (f"resume < 10% of the first run ({100 * wr / w2:.1f}%)", wr < 0.1 * w2),
-               ("every batch certificate equals plain certify", same1 and same2)]
-    print("\nTargets (issue 13)")
+    targets = [
+        (f">= 5,000 certifications per core-hour of CPU time, 1 worker ({rate_cpu1:,.0f})", rate_cpu1 >= TARGET_PER_HOUR),
+        (f">= 5,000 certifications per core-hour of CPU time, 2 workers ({rate_cpu2:,.0f})", rate_cpu2 >= TARGET_PER_HOUR),
+        (f">= 5,000 certifications per core-hour of wall time, 1 worker ({rate_wall1:,.0f}) [idle]", rate_wall1 >= TARGET_PER_HOUR),
+        (f">= 5,000 certifications per core-hour of wall time, 2 workers ({rate_wall2:,.0f}) [idle]", rate_wall2 >= TARGET_PER_HOUR),
+        (f"speed-up on 2 cores >= 1.7x ({w1 / w2:.2f}x wall) [idle]", w1 / w2 >= TARGET_SPEEDUP),
+        (f"speed-up on 2 cores >= 1.7x, estimated from CPU times ({est_speedup:.2f}x)", est_speedup >= TARGET_SPEEDUP),
+        (f"overhead over plain certify <= 10% of CPU time, Ray start-up included ({100 * over_cpu:+.1f}%)",
+         over_cpu <= TARGET_OVERHEAD),
+        (f"overhead over plain certify <= 10% of wall time ({100 * over_wall:+.1f}%) [idle]", over_wall <= TARGET_OVERHEAD),
+        (f"resume < 10% of the first run ({100 * wr / w2:.1f}%)", wr < TARGET_RESUME * w2),
+        ("every batch certificate equals plain certify", same1 and same2)]
+    print(f"\nTargets (issue 13; [idle]: wall time, load average was {load:.1f} at the start)")
     for text, met in targets:
         print(f"  {'YES' if met else 'NO '}  {text}")
     return 0

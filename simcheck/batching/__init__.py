@@ -37,6 +37,10 @@ class BatchResult:
         computed: tasks run (or decided) in this run; resumed: tasks found in the store; retried: worker
             deaths that were retried.
         newly_failing: tasks certified in the baseline and not now (None without a baseline).
+        run: what summary.json records of the run: ``computed``, ``resumed``, ``retried``, ``slots``,
+            ``seconds`` (wall) and ``cpu_seconds`` (``driver``: this process during the call; with a local
+            Ray also ``ray_services`` and ``workers``, its processes' CPU time up to its shutdown, and
+            ``per_worker``).
     """
 
     rows: list
@@ -47,6 +51,7 @@ class BatchResult:
     resumed: int
     retried: int
     newly_failing: list | None = None
+    run: dict | None = None
 
 
 def batch(manifest, out, *, workers: int | None = None, address: str | None = None,
@@ -78,7 +83,7 @@ def batch(manifest, out, *, workers: int | None = None, address: str | None = No
     from simcheck.batching.store import Store
     from simcheck.batching.summary import newly_failing, rows_from_store, write_junit, write_summary
 
-    t0 = time.perf_counter()
+    t0, cpu0 = time.perf_counter(), time.process_time()
     entries = read_manifest(manifest)
     if baseline is not None:
         newly_failing([], baseline)  # a bad baseline is an input error before anything starts
@@ -91,9 +96,9 @@ def batch(manifest, out, *, workers: int | None = None, address: str | None = No
     settings = RunSettings(task_timeout, task_memory, retries, images, chunk)
     need = scans_to_reconstruct(entries, store)
     jobs = [] if need else jobs_for_entries(entries, store, settings)
-    slots = 0
+    slots, usage = 0, {}
     if need or any(not store.has(j.key) for j in jobs):
-        with ray_session(workers, address) as slots:
+        with ray_session(workers, address, usage) as slots:
             if need:
                 run_reconstructions(need, store)
                 jobs = jobs_for_entries(entries, store, settings)
@@ -103,13 +108,13 @@ def batch(manifest, out, *, workers: int | None = None, address: str | None = No
     rows = rows_from_store([j.key for j in jobs], store)
     newly = newly_failing(rows, baseline) if baseline is not None else None
     run = {"computed": counts.computed, "resumed": counts.resumed, "retried": counts.retried, "slots": slots,
-           "seconds": time.perf_counter() - t0}
+           "seconds": time.perf_counter() - t0, "cpu_seconds": {"driver": time.process_time() - cpu0, **usage}}
     path = write_summary(store.root, rows, str(manifest), newly, run)
     if junit is not None:
         write_junit(junit, rows)
     totals = dict(sorted({s: sum(r["status"] == s for r in rows) for s in {r["status"] for r in rows}}.items()))
     return BatchResult(rows, totals, exit_code(r["status"] for r in rows), path, counts.computed, counts.resumed,
-                       counts.retried, newly)
+                       counts.retried, newly, run)
 
 
 def _run(jobs, store, settings, slots: int, progress: bool):

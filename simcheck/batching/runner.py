@@ -32,7 +32,7 @@ from simcheck.batching.keys import file_digest, scan_key, task_key
 from simcheck.batching.manifest import Entry
 from simcheck.batching.store import Store
 
-__all__ = ["Job", "RunSettings", "run_jobs", "jobs_for_entries", "all_movable_tasks", "chunk_size", "MAX_CHUNK", "ray_session", "BACKSTOP_FACTOR", "BACKSTOP_SECONDS"]
+__all__ = ["Job", "RunSettings", "run_jobs", "jobs_for_entries", "all_movable_tasks", "chunk_size", "MAX_CHUNK", "ray_session", "ray_cpu_seconds", "BACKSTOP_FACTOR", "BACKSTOP_SECONDS"]
 
 log = logging.getLogger(__name__)
 
@@ -204,9 +204,10 @@ class _Stop(Exception):
     """SIGTERM / SIGHUP received: end the run like Ctrl-C."""
 
 
-def ray_session(workers: int | None, address: str | None):
+def ray_session(workers: int | None, address: str | None, usage: dict | None = None):
     """Context manager: a Ray connection for the run (see the module docstring); yields the number of
-    CPUs of the cluster."""
+    CPUs of the cluster. With a Ray started here, ``usage`` (if given) receives the CPU time of its
+    processes just before it is shut down (see :func:`ray_cpu_seconds`)."""
     import contextlib
 
     @contextlib.contextmanager
@@ -242,12 +243,36 @@ def ray_session(workers: int | None, address: str | None):
         finally:
             for s, h in previous.items():
                 signal.signal(s, h)
+            if guardian is not None and usage is not None:
+                usage.update(ray_cpu_seconds())
             ray.shutdown()
             if guardian is not None:
                 from simcheck.batching.guardian import stop_guardian
                 stop_guardian(guardian)
 
     return session()
+
+
+def ray_cpu_seconds() -> dict:
+    """CPU time (user + system, s) so far of this process's descendants, which are a local Ray's processes
+    and the guardian: ``workers`` (Ray's ``ray::`` worker processes, imports included), ``ray_services``
+    (the GCS, raylet, dashboard, monitors, agents and the guardian, with the children they reaped) and
+    ``per_worker`` (a list, largest first). A process that ended earlier is counted only through the
+    parent that reaped it."""
+    import psutil
+
+    workers, services = [], 0.0
+    for p in psutil.Process().children(recursive=True):
+        try:
+            t, name = p.cpu_times(), p.name()
+        except psutil.Error:
+            continue
+        own = t.user + t.system
+        if name.startswith("ray::") and "Agent" not in name:
+            workers.append(own)
+        else:
+            services += own + t.children_user + t.children_system
+    return {"ray_services": services, "workers": sum(workers), "per_worker": sorted(workers, reverse=True)}
 
 
 def run_reconstructions(entries: list[Entry], store: Store) -> None:
