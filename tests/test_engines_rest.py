@@ -22,26 +22,39 @@ MAX_HINGE = 0.01      # rad a revolute joint may move at rest
 MAX_OVERLAP = 5e-4    # m two links may interpenetrate at q = 0
 
 
-@pytest.fixture(scope="module", params=["clean", "realistic"])
-def kitchen(request, tmp_path_factory):
-    """{"scene.urdf", "scene.xml", "scene.srdf", "truth.urdf", "scan", "labels", "preset"} of kitchen seed 0 reconstructed from ``preset``."""
-    import scenes
-    from recon import reconstruct, write_reconstruction
-
-    out = tmp_path_factory.mktemp(f"kitchen_{request.param}")
-    scenes.make_scene("kitchen", seed=0, preset=request.param, out=out / "truth", previews=False)
-    rec = reconstruct(out / "truth" / "scan.npz", out / "truth" / "labels.json", seed=0)
-    paths = write_reconstruction(rec, out / "recon", mjcf=True)
-    return {"scene.urdf": paths["scene.urdf"], "scene.xml": paths["scene.xml"], "scene.srdf": paths["scene.srdf"],
-            "truth.urdf": out / "truth" / "truth.urdf",
-            "scan": out / "truth" / "scan.npz", "labels": out / "truth" / "labels.json", "preset": request.param}
+PRESETS = ("clean", "realistic")
+_KITCHENS: dict[str, dict] = {}
 
 
-@pytest.fixture(params=["scene.urdf", "truth.urdf"])
-def urdf(request, kitchen) -> Path:
-    if request.param == "truth.urdf" and kitchen["preset"] != "clean":
-        pytest.skip("the truth is the same for both scans")
-    return kitchen[request.param]
+def _kitchen(preset: str, tmp_path_factory) -> dict:
+    """{"scene.urdf", "scene.xml", "scene.srdf", "truth.urdf", "scan", "labels", "preset"} of kitchen seed 0
+    reconstructed from a ``preset`` scan; built once per test process."""
+    if preset not in _KITCHENS:
+        import scenes
+        from recon import reconstruct, write_reconstruction
+
+        out = tmp_path_factory.mktemp(f"kitchen_{preset}")
+        scenes.make_scene("kitchen", seed=0, preset=preset, out=out / "truth", previews=False)
+        rec = reconstruct(out / "truth" / "scan.npz", out / "truth" / "labels.json", seed=0)
+        paths = write_reconstruction(rec, out / "recon", mjcf=True)
+        _KITCHENS[preset] = {"scene.urdf": paths["scene.urdf"], "scene.xml": paths["scene.xml"],
+                             "scene.srdf": paths["scene.srdf"], "truth.urdf": out / "truth" / "truth.urdf",
+                             "scan": out / "truth" / "scan.npz", "labels": out / "truth" / "labels.json",
+                             "preset": preset}
+    return _KITCHENS[preset]
+
+
+@pytest.fixture(scope="module", params=PRESETS)
+def kitchen(request, tmp_path_factory) -> dict:
+    """The reconstructed kitchen of each scan preset."""
+    return _kitchen(request.param, tmp_path_factory)
+
+
+@pytest.fixture(scope="module", params=[f"{p} scene.urdf" for p in PRESETS] + ["truth.urdf"])
+def urdf(request, tmp_path_factory) -> Path:
+    """Each preset's reconstructed scene.urdf, and the truth.urdf (the same whatever the scan)."""
+    preset, _, name = request.param.rpartition(" ")
+    return _kitchen(preset or PRESETS[0], tmp_path_factory)[name]
 
 
 def test_no_two_links_overlap_at_rest(urdf):
@@ -151,10 +164,10 @@ def test_parses_and_rests_in_drake(urdf):
     _assert_still(moved, f"Drake, {urdf}")
 
 
-def test_the_same_scan_gives_a_byte_identical_scene_urdf(kitchen, tmp_path):
-    """``recon build`` in a fresh process writes exactly the bytes the in-process reconstruction wrote."""
-    if kitchen["preset"] != "clean":
-        pytest.skip("one scan is enough")
+def test_the_same_scan_gives_a_byte_identical_scene_urdf(tmp_path_factory, tmp_path):
+    """``recon build`` in a fresh process writes exactly the bytes the in-process reconstruction wrote
+    (on the clean scan: one scan is enough)."""
+    kitchen = _kitchen("clean", tmp_path_factory)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(Path(__file__).resolve().parents[1])]
                                                       + os.environ.get("PYTHONPATH", "").split(os.pathsep)))
     r = subprocess.run([sys.executable, "-m", "recon", "build", str(kitchen["scan"]), "--labels", str(kitchen["labels"]),
