@@ -16,7 +16,8 @@ def _random_T(rng) -> np.ndarray:
 
 
 def generated_model(seed: int, n_links: int = 8) -> SceneModel:
-    """A random tree: every kind of joint, shape, material, inertial, limit and dynamics."""
+    """A random tree: every kind of joint, shape, material, inertial, limit and dynamics; odd links have
+    PyBullet's ``<contact><lateral_friction>``."""
     rng = np.random.default_rng(seed)
     links = [Link("world")]
     joints = []
@@ -29,7 +30,7 @@ def generated_model(seed: int, n_links: int = 8) -> SceneModel:
         visuals = tuple(Shape(s.kind, s.size, s.T_link_shape, s.name + "_v", material=mat) for s in shapes)
         inertia = np.diag(rng.uniform(0.01, 0.1, 3))
         links.append(Link(f"link{i}", Inertial(float(rng.uniform(0.5, 5)), _random_T(rng), inertia), visuals,
-                          tuple(shapes)))
+                          tuple(shapes), lateral_friction=0.5 + 0.05 * i if i % 2 else None))
         jt = types[i % 4]
         lo = float(rng.uniform(-1, 0))
         joints.append(Joint(f"joint{i}", jt, links[int(rng.integers(0, i))].name, f"link{i}", _random_T(rng),
@@ -50,6 +51,7 @@ def test_write_then_read_gives_the_same_model(tmp_path, seed):
     assert j.limit == pytest.approx(model.joints["joint2"].limit) and j.dynamics is not None
     assert back.links["link1"].visuals[0].material.rgba == pytest.approx(model.links["link1"].visuals[0].material.rgba)
     assert back.links["link3"].inertial.isclose(model.links["link3"].inertial)
+    assert [lk.lateral_friction for lk in back.links.values()] == [lk.lateral_friction for lk in model.links.values()]
 
 
 def test_forward_kinematics_matches_pinocchio(tmp_path):
