@@ -30,6 +30,7 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "description": ["Shape", "ShapeKind"],
     "truth_urdf": ["write_truth_urdf", "urdf_from_scene"],
     "truth_json": ["write_truth_json", "read_truth_json"],
+    "openings": ["Opening", "openings"],
     "errors": ["ScenesError", "SceneSpecError", "PlacementError", "ScanError"],
     "outcome": ["Outcome", "exit_code"],
 })

@@ -4,24 +4,25 @@ Stages (each logged on stderr with its time, each recorded in ``OUT/demo.json``)
 
     scene        scenes.make_scene("kitchen", seed, preset="realistic")  -> OUT/truth/{truth.urdf, truth.json, scan.*}
     reconstruct  recon.write_reconstruction(recon.reconstruct(scan, labels), OUT) -> OUT/scene.urdf, graph.json
-    metrics      recon.metrics against truth.json                          -> OUT/metrics.json
-    tasks        open-drawer / open-door tasks picked from the truth, present in the reconstruction
+    metrics      recon.metrics.reconstruction_metrics_doc against truth.json -> OUT/metrics.json
+    tasks        drawers and doors of the truth (scenes.openings) usable on scene.urdf (planners.check_task)
     certify      simcheck.certify(scene.urdf, tasks, against=truth.urdf)  -> OUT/certificate.json, OUT/rollouts/
     report       simcheck.report.render_report(OUT)                        -> OUT/report.html
 
-A stage whose package API is not there (yet) is recorded as ``unavailable`` and names what is
-missing; the stages that need its output are ``skipped``. Nothing is made up: the report shows only
-what the stages wrote. The report is always rendered from whatever exists.
+A stage that fails is recorded as ``failed`` with its error, and the stages that need its output as
+``skipped``; the report is always rendered from whatever exists. Nothing is made up: the report shows
+only what the stages wrote.
 
-Exit codes: 0 = every stage ran (whatever the certificate says: a task that failed certification is a
-result, shown in the report and on stdout); 1 = a stage failed or was unavailable; 2 = bad arguments
-(e.g. a scene that is not built in).
+Exit code (:func:`scenes.outcome.exit_code`): over the certified tasks' outcomes, plus ``unusable`` for a
+stage that failed with a partscene error (it names the input that was wrong, as the packages' command
+lines treat it) and ``error`` for one that failed otherwise (a bug; its traceback is logged): 0 when every task is
+certified, 2 on unusable input (also bad arguments, e.g. a scene that is not built in), 3 on an internal
+error, otherwise 1.
 """
 
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import enum
 import json
 import logging
@@ -33,14 +34,12 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
-
-from scenes.description import read_truth_doc, write_text_atomic
-from scenes.outcome import Outcome
+from scenes.description import InputError, PartsceneError, write_text_atomic
+from scenes.outcome import Outcome, exit_code
 from simcheck.report import DemoLayout, render_report
 
-__all__ = ["DemoConfig", "StageStatus", "StageRecord", "DemoResult", "TaskChoice", "choose_tasks", "usable_tasks",
-           "metrics_doc", "run_demo", "main"]
+__all__ = ["DemoConfig", "StageStatus", "StageRecord", "DemoResult", "TaskChoice", "choose_tasks", "usable_openings",
+           "run_demo", "main"]
 
 log = logging.getLogger("simcheck.demo")
 
@@ -62,42 +61,27 @@ class DemoConfig:
 
 
 class StageStatus(enum.Enum):
+    """What became of one stage of the demo."""
+
     OK = "ok"
     FAILED = "failed"            # the stage ran and raised: a bug or a bad input (message says which)
-    UNAVAILABLE = "unavailable"  # the package API this stage calls does not exist yet
     SKIPPED = "skipped"          # an earlier stage it needs did not produce its output
 
 
 @dataclass
 class StageRecord:
-    """One row of demo.json: ``name``, ``status``, wall-clock ``seconds`` and a human ``message``."""
+    """One row of demo.json: ``name``, ``status``, wall-clock ``seconds``, a human ``message`` and, for a
+    failed stage, the task ``outcome`` the failure stands for (unusable input or an internal error)."""
 
     name: str
     status: StageStatus
     seconds: float
     message: str
+    outcome: Outcome | None = None
 
     def to_json(self) -> dict:
         return {"name": self.name, "status": self.status.value, "seconds": round(self.seconds, 3),
                 "message": self.message}
-
-
-#: Packages whose exceptions are expected, self-explaining failures (no traceback in the log).
-_PROJECT_PACKAGES = ("scenes", "recon", "planners", "simcheck")
-
-
-class StageUnavailable(Exception):
-    """Raised by a stage when the API it needs is not importable (the message names it)."""
-
-
-def _api(module: str, attr: str):
-    """``module.attr`` or :class:`StageUnavailable` naming what is missing."""
-    import importlib
-    try:
-        mod = importlib.import_module(module)
-        return getattr(mod, attr)
-    except (ImportError, AttributeError) as exc:
-        raise StageUnavailable(f"{module}.{attr} is not available yet ({exc})") from exc
 
 
 def _write_json_atomic(path: Path, doc: dict) -> None:
@@ -118,35 +102,20 @@ class TaskChoice:
 _DOOR_CATEGORY_ORDER = ("cabinet", "microwave", "refrigerator")
 
 
-def choose_tasks(truth: dict, graph: dict, max_drawers: int, max_doors: int) -> TaskChoice:
-    """Drawer and door tasks of the truth whose joint (same URDF name) the reconstruction made movable.
+def choose_tasks(openings, max_drawers: int, max_doors: int, reason: str = "") -> TaskChoice:
+    """A small, varied set of drawers and doors (:class:`scenes.openings.Opening`, in scene order), with
+    ``reason`` saying which were left out before.
 
-    Drawers: prismatic truth joints whose child part is a ``drawer``, cabinets first, at most
-    ``max_drawers``. Doors: revolute truth joints whose child is a ``door``, taken round-robin over
-    cabinet, microwave, refrigerator (one per object per round), at most ``max_doors``.
+    Drawers: cabinets first, at most ``max_drawers``. Doors: taken round-robin over cabinet, microwave,
+    refrigerator (one per object per round), at most ``max_doors``.
     """
-    movable_est = {j.get("name"): j.get("type") for o in graph.get("objects", []) for j in o.get("joints", [])
-                   if j.get("type") in ("prismatic", "revolute")}
-    drawers: list[tuple[bool, str]] = []  # (not a cabinet, joint name): cabinets sort first
+    drawers = sorted((o.category != "cabinet", o.joint) for o in openings if o.kind == "drawer")
     doors_by_object: dict[str, list[str]] = {}
     category_of: dict[str, str] = {}
-    left_out: list[str] = []
-    for obj in truth.get("objects", []):
-        label_of = {p["id"]: p.get("label") for p in obj.get("parts", [])}
-        for j in obj.get("joints", []):
-            label = label_of.get(j.get("child_part_id"))
-            kind = ("drawer" if j.get("type") == "prismatic" and label == "drawer" else
-                    "door" if j.get("type") == "revolute" and label == "door" else None)
-            if kind is None:
-                continue
-            if j["name"] not in movable_est:
-                left_out.append(f"{j['name']} (not movable in the reconstruction)")
-                continue
-            if kind == "drawer":
-                drawers.append((obj.get("category") != "cabinet", j["name"]))
-            else:
-                doors_by_object.setdefault(obj["name"], []).append(j["name"])
-                category_of[obj["name"]] = str(obj.get("category"))
+    for o in openings:
+        if o.kind == "door":
+            doors_by_object.setdefault(o.object, []).append(o.joint)
+            category_of[o.object] = o.category
     rank = {c: i for i, c in enumerate(_DOOR_CATEGORY_ORDER)}
     objects = sorted(doors_by_object, key=lambda n: (rank.get(category_of[n], len(rank)), n))
     doors: list[str] = []
@@ -154,79 +123,56 @@ def choose_tasks(truth: dict, graph: dict, max_drawers: int, max_doors: int) -> 
         for n in objects:
             if doors_by_object[n] and len(doors) < max_doors:
                 doors.append(doors_by_object[n].pop(0))
-    tasks = tuple(("open-drawer", j) for _, j in sorted(drawers)[:max_drawers]) + tuple(("open-door", j) for j in doors)
-    return TaskChoice(tasks, "; ".join(left_out))
+    tasks = tuple(("open-drawer", j) for _, j in drawers[:max_drawers]) + tuple(("open-door", j) for j in doors)
+    return TaskChoice(tasks, reason)
+
+
+def usable_openings(openings, scene_urdf: Path) -> tuple[tuple, str]:
+    """The ``openings`` whose task simcheck accepts as input on ``scene_urdf``, and why the others were
+    left out (a joint the reconstruction left fixed or missing, with no opening range, or of the wrong
+    type: :func:`planners.task.check_task`'s reason, joined by "; ")."""
+    from planners.errors import TaskSpecError
+    from planners.task import check_task, parse_task
+    from simcheck.scene_joints import read_scene_joints
+
+    joints = read_scene_joints(scene_urdf)
+    kept, left_out = [], []
+    for o in openings:
+        try:
+            check_task(parse_task(o.task), joints, scene_urdf)
+            kept.append(o)
+        except TaskSpecError as exc:
+            left_out.append(f"{o.joint} (rejected: {exc})")
+    return tuple(kept), "; ".join(left_out)
 
 
 # ------------------------------------------------------------------------------------------ stages
 def _stage_scene(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
-    make_scene = _api("scenes", "make_scene")
-    make_scene(cfg.scene, seed=cfg.seed, preset=cfg.preset, out=lay.truth_dir)
-    truth = read_truth_doc(lay.truth_json)
-    n_parts = sum(len(o.get("parts", [])) for o in truth.get("objects", []))
-    return f"{cfg.scene} seed {cfg.seed}: {len(truth.get('objects', []))} objects, {n_parts} parts; " \
+    from scenes import make_scene
+
+    made = make_scene(cfg.scene, seed=cfg.seed, preset=cfg.preset, out=lay.truth_dir)
+    state["scene"] = made.scene
+    n_parts = sum(len(o.parts) for o in made.scene.objects)
+    return f"{cfg.scene} seed {cfg.seed}: {len(made.scene.objects)} objects, {n_parts} parts; " \
            f"scanned with preset {cfg.preset!r}"
 
 
 def _stage_reconstruct(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
-    reconstruct = _api("recon", "reconstruct")
-    write_reconstruction = _api("recon", "write_reconstruction")
+    from recon import reconstruct, write_reconstruction
+    from recon.model import JointType
+
     rec = reconstruct(lay.scan_ply, lay.labels_json, seed=cfg.seed)
     write_reconstruction(rec, lay.root)
     state["reconstruction"] = rec
-    n_joints = sum(1 for o in rec.objects for j in o.joints if str(getattr(j.type, "value", j.type)) != "fixed")
-    n_warn = len(getattr(rec, "warnings", ()))
-    return f"{len(rec.objects)} objects, {n_joints} movable joints estimated, {n_warn} warnings"
-
-
-def _finite_or_none(x: float) -> float | None:
-    """JSON has no NaN: an undefined metric is written as null (shown as "–")."""
-    return float(x) if x is not None and np.isfinite(x) else None
-
-
-def metrics_doc(scene_metrics, summary) -> dict:
-    """``metrics.json`` (format ``partscene.metrics/1``) from ``recon.metrics`` results.
-
-    ``summary``: scene means (Chamfer in the unit box, voxel IoU, kinematic mAP over objects) and the
-    pooled joint summary; ``objects``: one row per true object; ``joints``: one row per true movable joint.
-    """
-    from recon.metrics import mean_average_precision
-
-    objs = scene_metrics.objects
-    doc = {"format": "partscene.metrics/1", "scene": scene_metrics.scene,
-           "summary": {"chamfer": _finite_or_none(scene_metrics.chamfer), "iou": _finite_or_none(scene_metrics.iou),
-                       "kinematic_map": _finite_or_none(mean_average_precision(o.ap for o in objs)),
-                       "missing_objects": int(scene_metrics.missing)},
-           "objects": [], "joints": []}
-    for field_name, value in dataclasses.asdict(summary).items():
-        doc["summary"][field_name] = value if isinstance(value, int) else _finite_or_none(value)
-    for o in objs:
-        doc["objects"].append({"name": o.name, "category": o.category, "status": o.status.value,
-                               "chamfer": _finite_or_none(o.chamfer), "iou": _finite_or_none(o.iou),
-                               "ap": _finite_or_none(o.ap)})
-        for j in o.joints:
-            if j.true_type == "fixed":
-                continue
-            doc["joints"].append({"name": j.name, "true_type": j.true_type, "est_type": j.est_type,
-                                  "match": j.match.value, "axis_error_deg": _finite_or_none(j.axis_error_deg),
-                                  "hinge_distance_m": _finite_or_none(j.hinge_distance_m),
-                                  "upper_error": _finite_or_none(j.upper_error)})
-    return doc
+    n_joints = sum(1 for o in rec.objects for j in o.joints if j.type is not JointType.FIXED)
+    return f"{len(rec.objects)} objects, {n_joints} movable joints estimated, {len(rec.warnings)} warnings"
 
 
 def _stage_metrics(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
-    read_truth = _api("recon.metrics", "read_truth")
-    estimate_from_reconstruction = _api("recon.metrics", "estimate_from_reconstruction")
-    evaluate_scene = _api("recon.metrics", "evaluate_scene")
-    joint_summary = _api("recon.metrics", "joint_summary")
-    metrics_config = _api("recon.metrics", "MetricsConfig")
-    truth = read_truth(lay.truth_json)
-    rec = state["reconstruction"]
-    estimates = [estimate_from_reconstruction(o, rec.config) for o in rec.objects]
-    scene_metrics = evaluate_scene(truth, estimates, metrics_config(seed=cfg.seed))
-    summary = joint_summary([c for o in scene_metrics.objects for c in o.joints])
-    doc = metrics_doc(scene_metrics, summary)
-    _write_json_atomic(lay.metrics_json, doc)
+    from recon.metrics import MetricsConfig, read_truth, reconstruction_metrics_doc, write_metrics_json
+
+    doc = reconstruction_metrics_doc(read_truth(lay.truth_json), state["reconstruction"], MetricsConfig(seed=cfg.seed))
+    write_metrics_json(doc, lay.metrics_json)
     s = doc["summary"]
 
     def g(x):
@@ -235,45 +181,28 @@ def _stage_metrics(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
             f"joint type accuracy {g(s.get('type_accuracy'))}")
 
 
-def usable_tasks(choice: TaskChoice, scene_urdf: Path) -> TaskChoice:
-    """``choice`` without the tasks simcheck would reject as input on ``scene_urdf`` (a joint with no
-    opening range, or of the wrong type for the task), each named with simcheck's reason in ``reason``."""
-    parse_task = _api("planners.task", "parse_task")
-    check_task = _api("planners.task", "check_task")
-    read_scene_joints = _api("simcheck.scene_joints", "read_scene_joints")
-    input_error = _api("planners.errors", "TaskSpecError")
-    joints = read_scene_joints(scene_urdf)
-    kept, left_out = [], [choice.reason] if choice.reason else []
-    for kind, joint in choice.tasks:
-        try:
-            check_task(parse_task(f"{kind}:{joint}"), joints, scene_urdf)
-            kept.append((kind, joint))
-        except input_error as exc:
-            left_out.append(f"{joint} (rejected: {exc})")
-    return TaskChoice(tuple(kept), "; ".join(left_out))
-
-
 def _stage_tasks(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
-    truth = read_truth_doc(lay.truth_json)
-    graph = json.loads(lay.graph_json.read_text())
-    choice = usable_tasks(choose_tasks(truth, graph, cfg.max_drawers, cfg.max_doors), lay.scene_urdf)
+    from scenes.openings import openings
+
+    usable, left_out = usable_openings(openings(state["scene"]), lay.scene_urdf)
+    choice = choose_tasks(usable, cfg.max_drawers, cfg.max_doors, left_out)
     state["tasks"] = choice
     if not choice.tasks:
-        raise RuntimeError(f"no drawer or door of {lay.truth_json} can be certified on {lay.scene_urdf}: "
+        raise InputError(f"no drawer or door of {lay.truth_json} can be certified on {lay.scene_urdf}: "
                            f"{choice.reason}")
     return "; ".join(f"{kind}:{joint}" for kind, joint in choice.tasks) + (
         f" -- left out: {choice.reason}" if choice.reason else "")
 
 
 def _stage_certify(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
-    certify = _api("simcheck", "certify")
+    from simcheck.certification import certify
+
     choice: TaskChoice = state["tasks"]
     cert = certify(lay.scene_urdf, [f"{kind}:{joint}" for kind, joint in choice.tasks], against=lay.truth_urdf,
                    out=lay.root, seed=cfg.seed)
     state["certificate"] = cert
-    doc = json.loads(lay.certificate_json.read_text())
-    n_ok = sum(1 for t in doc.get("tasks", []) if t.get("status") == Outcome.CERTIFIED)
-    return f"{n_ok} of {len(doc.get('tasks', []))} tasks certified"
+    n_ok = sum(1 for t in cert.tasks if t.status is Outcome.CERTIFIED)
+    return f"{n_ok} of {len(cert.tasks)} tasks certified"
 
 
 def _stage_report(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
@@ -294,14 +223,28 @@ STAGES: tuple[tuple[str, Callable[[DemoConfig, DemoLayout, dict], str], tuple[st
 
 @dataclass
 class DemoResult:
-    """What :func:`run_demo` did: one record per stage, the report path and the certificate (if any)."""
+    """What :func:`run_demo` did: one record per stage, and the certificate (:class:`simcheck.Certificate`,
+    ``None`` when the certify stage did not run)."""
 
     out: Path
     stages: list[StageRecord] = field(default_factory=list)
+    certificate: object | None = None
 
     @property
     def complete(self) -> bool:
+        """Every stage ran."""
         return all(s.status is StageStatus.OK for s in self.stages)
+
+    @property
+    def outcomes(self) -> list[Outcome]:
+        """The certified tasks' outcomes, and the outcome each failed stage stands for."""
+        tasks = [t.status for t in self.certificate.tasks] if self.certificate is not None else []
+        return tasks + [s.outcome for s in self.stages if s.outcome is not None]
+
+    @property
+    def exit_code(self) -> int:
+        """The run's exit code (:func:`scenes.outcome.exit_code` of :attr:`outcomes`)."""
+        return exit_code(self.outcomes)
 
 
 def run_demo(out: str | os.PathLike, config: DemoConfig = DemoConfig()) -> DemoResult:
@@ -325,34 +268,28 @@ def run_demo(out: str | os.PathLike, config: DemoConfig = DemoConfig()) -> DemoR
                 rec = StageRecord(name, StageStatus.OK, time.perf_counter() - t0, msg)
                 done.add(name)
                 log.info("[%s] ok in %.1f s: %s", name, rec.seconds, msg)
-            except StageUnavailable as exc:
-                rec = StageRecord(name, StageStatus.UNAVAILABLE, time.perf_counter() - t0, str(exc))
-                log.warning("[%s] NOT AVAILABLE: %s", name, exc)
-            except Exception as exc:  # noqa: BLE001 -- a stage's bug is reported, the rest still runs
-                rec = StageRecord(name, StageStatus.FAILED, time.perf_counter() - t0,
-                                  f"{type(exc).__name__}: {exc}")
-                # a project error names what was wrong; anything else is a bug: show where it happened
-                ours = type(exc).__module__.split(".")[0] in _PROJECT_PACKAGES
+            except Exception as exc:  # noqa: BLE001 -- a stage's failure is reported, the rest still runs
+                # a partscene error names the input that was wrong (as the packages' command lines treat
+                # it: unusable); anything else is a bug: show where it happened
+                unusable = isinstance(exc, PartsceneError)
+                rec = StageRecord(name, StageStatus.FAILED, time.perf_counter() - t0, f"{type(exc).__name__}: {exc}",
+                                  Outcome.UNUSABLE if unusable else Outcome.ERROR)
                 log.error("[%s] FAILED after %.1f s: %s%s", name, rec.seconds, rec.message,
-                          "" if ours else "\n" + traceback.format_exc())
+                          "" if unusable else "\n" + traceback.format_exc())
         result.stages.append(rec)
+        result.certificate = state.get("certificate")
         _write_json_atomic(lay.demo_json, {"format": "partscene.demo/1", "config": config.__dict__,
                                            "seconds": round(time.perf_counter() - t_start, 3),
                                            "stages": [s.to_json() for s in result.stages]})
     return result
 
 
-def _task_lines(lay: DemoLayout) -> list[str]:
-    if not lay.certificate_json.exists():
-        return []
-    doc = json.loads(lay.certificate_json.read_text())
+def _task_lines(cert) -> list[str]:
+    """One line per task of certificate ``cert`` (none when there is none): outcome, task, reason (cut)."""
     lines = []
-    for t in doc.get("tasks", []):
-        reason = str(t.get("reason", ""))
-        if len(reason) > _REASON_CHARS:
-            reason = reason[:_REASON_CHARS - 3] + "..."
-        lines.append(f"  {t.get('status', '?'):<12} {t.get('kind', t.get('task', ''))}:{t.get('joint', '?')}"
-                     f"  {reason}")
+    for t in cert.tasks if cert is not None else ():
+        reason = t.reason if len(t.reason) <= _REASON_CHARS else t.reason[:_REASON_CHARS - 3] + "..."
+        lines.append(f"  {t.status.value:<12} {t.kind}:{t.joint}  {reason}")
     return lines
 
 
@@ -372,11 +309,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     p.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     p.add_argument("-q", "--quiet", action="store_true", help="warnings only")
     args = p.parse_args(argv)
-    try:
-        from scenes import list_scenes
-    except ImportError:
-        list_scenes = None
-    if list_scenes is not None and args.scene not in list_scenes():
+    from scenes import list_scenes
+
+    if args.scene not in list_scenes():
         p.error(f"unknown scene {args.scene!r}; built-in scenes: {', '.join(list_scenes())}")
     logging.basicConfig(level=logging.DEBUG if args.verbose else logging.WARNING if args.quiet else logging.INFO,
                         format="%(asctime)s %(name)s: %(message)s", datefmt="%H:%M:%S", stream=sys.stderr)
@@ -387,7 +322,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     result = run_demo(args.out, cfg)
     lay = DemoLayout(Path(args.out))
     total = sum(s.seconds for s in result.stages)
-    tasks = _task_lines(lay)
+    tasks = _task_lines(result.certificate)
     print(f"partscene demo: {cfg.scene} seed {cfg.seed}, {total:.0f} s, {len(tasks)} tasks:")
     for line in tasks:
         print(line)
@@ -395,7 +330,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if s.status is not StageStatus.OK:
             print(f"  stage {s.name}: {s.status.value}: {s.message}")
     print(f"report: {lay.report_html.resolve()}")
-    return 0 if result.complete else 1
+    return result.exit_code
 
 
 if __name__ == "__main__":

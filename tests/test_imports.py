@@ -13,7 +13,7 @@ ENGINES = ("pybullet", "pinocchio", "coal", "ompl", "open3d")
 #: modules of descriptions, artifacts, criteria and file formats: importable without any engine
 PURE = ("scenes", "recon", "planners", "simcheck",
         "scenes.outcome", "scenes.description", "scenes.model", "scenes.truth_json", "scenes.truth_urdf",
-        "scenes.generators", "scenes.builtin",
+        "scenes.generators", "scenes.builtin", "scenes.openings",
         "recon.config", "recon.errors", "recon.primitive", "recon.model", "recon.graph_json", "recon.scan",
         "recon.contacts", "recon.part_tree", "recon.joints", "recon.scene_urdf", "recon.metrics",
         "planners.task", "planners.config", "planners.errors", "planners.scene_urdf", "planners.robot",

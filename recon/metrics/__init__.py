@@ -14,6 +14,7 @@ Scene:
     estimate_from_reconstruction(obj, rec.config) -> ObjectEstimate     (the baseline builds ObjectEstimate too)
     evaluate_scene(truth, estimates, MetricsConfig()) -> SceneMetrics (per object; .chamfer, .iou means)
     joint_summary(comparisons) -> JointSummary (type / parent accuracy, median axis / hinge / limit errors)
+    reconstruction_metrics_doc(truth, rec, MetricsConfig()) -> the metrics.json document (write_metrics_json)
 Diagnostics (not in the paper):
     evaluate_parts(truth_object, estimate) -> PartMetrics per true part (Chamfer, IoU, centre error)
 
@@ -27,6 +28,7 @@ from recon.metrics.evaluation import (JointSummary, MetricsConfig, ObjectMetrics
                                       evaluate_object, evaluate_scene, joint_summary)
 from recon.metrics.joint_errors import (JointComparison, JointMatch, axis_angle_deg, compare_joints,
                                         line_distance_near, unsigned_axis_angle_deg)
+from recon.metrics.metrics_json import METRICS_FORMAT, metrics_doc, reconstruction_metrics_doc, write_metrics_json
 from recon.metrics.kinematic_ap import (average_precision, contact_edge_ap, mean_average_precision,
                                         undirected_scores)
 from recon.metrics.objects import ObjectEstimate, estimate_from_reconstruction
@@ -45,6 +47,7 @@ __all__ = [
     "compare_joints",
     "average_precision", "contact_edge_ap", "mean_average_precision", "undirected_scores",
     "ObjectEstimate", "estimate_from_reconstruction",
+    "METRICS_FORMAT", "metrics_doc", "reconstruction_metrics_doc", "write_metrics_json",
     "PartMetrics", "PartStatus", "evaluate_parts",
     "union_mesh", "bounds_in_frame", "grown",
     "TRUTH_FORMAT", "TruthScene", "TruthObject", "TruthPart", "read_truth", "truth_from_dict",
