@@ -173,7 +173,7 @@ class Session:
 
         t, c0 = time.perf_counter(), time.process_time()
         rollout = execute_task(w, plan, self.physics, requested_amount=requested,
-                               opening_type="revolute" if est.type == "continuous" else est.type,
+                               opening_type="revolute" if est.type == "continuous" else est.type.value,
                                opening_axis=sign * np.asarray(est.axis_world, dtype=float),
                                frame_callback=camera.snap if camera else None,
                                sample_callback=on_sample if camera is not None and video else None)

@@ -58,5 +58,5 @@ def joint_mapping(est: SceneJoint, ref: SceneJoint | None) -> dict | None:
     if ref is None:
         return None
     direction = 1 if float(np.dot(est.axis_world, ref.axis_world)) >= 0.0 else -1
-    return {"name": ref.name, "type": ref.type, "direction": direction,
+    return {"name": ref.name, "type": ref.type.value, "direction": direction,
             "lower": float(ref.lower), "upper": float(ref.upper)}

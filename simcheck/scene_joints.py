@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from planners.scene_urdf import read_scene_urdf
-from scenes.description import SceneModel
+from scenes.description import JointType, SceneModel
 from planners.errors import SceneURDFError
 from simcheck.errors import SceneLoadError
 
@@ -21,10 +21,11 @@ __all__ = ["SceneJoint", "read_scene_joints", "scene_link_names"]
 
 @dataclass(frozen=True)
 class SceneJoint:
-    """One URDF joint. ``axis_world`` (3,) unit and ``origin_world`` (3,) metres at the all-zero state."""
+    """One URDF joint: its :class:`~scenes.description.JointType` (a URDF type string is converted), limits
+    (m or rad), ``axis_world`` (3,) unit and ``origin_world`` (3,) metres at the all-zero state."""
 
     name: str
-    type: str
+    type: JointType
     parent: str
     child: str
     lower: float
@@ -32,13 +33,18 @@ class SceneJoint:
     axis_world: np.ndarray
     origin_world: np.ndarray
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "type", JointType(self.type))
+
     @property
     def movable(self) -> bool:
-        return self.type in ("prismatic", "revolute", "continuous")
+        """True for a prismatic, revolute or continuous joint."""
+        return self.type is not JointType.FIXED
 
     @property
     def unit(self) -> str:
-        return "m" if self.type == "prismatic" else "rad"
+        """The unit of its position: "m" (prismatic) or "rad"."""
+        return "m" if self.type is JointType.PRISMATIC else "rad"
 
 
 def _read(path: str | Path) -> SceneModel:
@@ -66,7 +72,7 @@ def read_scene_joints(path: str | Path) -> dict[str, SceneJoint]:
     out = {}
     for name, j in scene.joints.items():
         T_world_joint = scene.T_world_link(j.parent) @ j.T_parent_joint
-        out[name] = SceneJoint(name, j.type.value, j.parent, j.child,
+        out[name] = SceneJoint(name, j.type, j.parent, j.child,
                                j.lower if np.isfinite(j.lower) else 0.0, j.upper if np.isfinite(j.upper) else 0.0,
                                T_world_joint[:3, :3] @ j.axis, T_world_joint[:3, 3].copy())
     return out

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass, field
-from enum import Enum
+from enum import StrEnum
 from pathlib import Path
 from typing import Mapping
 
@@ -23,8 +23,8 @@ from ._shape import Material, Shape
 __all__ = ["JointType", "Limit", "Dynamics", "Inertial", "Link", "Joint", "SceneModel", "joint_motion"]
 
 
-class JointType(str, Enum):
-    """A joint's type (values are the URDF ``type`` attribute)."""
+class JointType(StrEnum):
+    """A joint's type; the value (also its ``str``) is the URDF ``type`` attribute."""
 
     FIXED = "fixed"
     PRISMATIC = "prismatic"
