@@ -29,6 +29,12 @@ from scenes.description import write_text_atomic
 
 __all__ = ["RobotSpec", "GripperModel", "default_robot", "robot_cache_dir", "PANDA_HOME"]
 
+#: Panda arm joint acceleration limits, rad/s^2 (Franka Emika's published joint limits, libfranka docs).
+PANDA_MAX_ACCELERATION = (15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0)
+#: the default base's acceleration limits (x, y m/s^2, yaw rad/s^2): an ASSUMPTION, not a vendor figure --
+#: what simcheck's executor asks of the base (docs/decisions.md, "Given plans"); set a real base's own.
+BASE_MAX_ACCELERATION = (4.0, 4.0, 4.0)
+
 #: Panda arm home configuration (rad): elbow up, hand pointing down in front of the base.
 PANDA_HOME = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
 
@@ -100,6 +106,9 @@ class RobotSpec:
         Newtons per finger that an executor may apply to close the gripper.
     gripper : GripperModel
         What the gripper can hold (grip force, pad friction): bounds the force an executed grasp transmits.
+    max_acceleration : tuple of float
+        Acceleration limit of each joint of ``joint_names``, m/s^2 or rad/s^2 (URDF has none); empty: not
+        given (a given plan's accelerations are then not judged).
     """
 
     urdf: Path
@@ -115,6 +124,7 @@ class RobotSpec:
     finger_closed: float = 0.0
     max_finger_force: float = 20.0
     gripper: GripperModel = field(default_factory=GripperModel)
+    max_acceleration: tuple[float, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "urdf", Path(self.urdf))
@@ -122,6 +132,9 @@ class RobotSpec:
             object.__setattr__(self, "gripper", GripperModel(**self.gripper))
         if len(self.base_joints) != 3:
             raise ValueError(f"RobotSpec({self.urdf}): base_joints must be (x, y, yaw), got {self.base_joints}")
+        if self.max_acceleration and len(self.max_acceleration) != len(self.joint_names):
+            raise ValueError(f"RobotSpec({self.urdf}): max_acceleration has {len(self.max_acceleration)} values for "
+                             f"{len(self.joint_names)} joints {self.joint_names}")
         if len(self.home) != len(self.joint_names):
             raise ValueError(f"RobotSpec({self.urdf}): home has {len(self.home)} values for "
                              f"{len(self.joint_names)} joints {self.joint_names}")
@@ -245,6 +258,7 @@ def default_robot() -> RobotSpec:
         base_link="base_link",
         gripper_links=("panda_hand", "panda_leftfinger", "panda_rightfinger"),
         home=(0.0, 0.0, 0.0) + PANDA_HOME,
+        max_acceleration=BASE_MAX_ACCELERATION + PANDA_MAX_ACCELERATION,
         # Always touching in the convex-hull model (or through the fixed mount / the hand flange).
         ignore_pairs=(("panda_link7", "panda_hand"), ("panda_link6", "panda_link7"),
                       ("panda_link5", "panda_link7"), ("panda_link6", "panda_hand"),

@@ -17,8 +17,8 @@ import numpy as np
 
 from planners.errors import TaskJointError, TaskSpecError
 
-__all__ = ["OpenTask", "PlanStatus", "Segment", "PlanResult", "SEGMENT_NAMES", "KINDS", "parse_task",
-           "parse_tasks", "check_task", "ALL_MOVABLE", "OPENING_KINDS", "movable_joint_tasks"]
+__all__ = ["OpenTask", "PlanStatus", "Segment", "Expectation", "GRIPPER_COMMANDS", "PlanResult", "SEGMENT_NAMES",
+           "KINDS", "parse_task", "parse_tasks", "check_task", "ALL_MOVABLE", "OPENING_KINDS", "movable_joint_tasks"]
 
 #: Segment names in execution order.
 SEGMENT_NAMES = ("approach", "grasp", "open", "release", "retreat")
@@ -237,6 +237,27 @@ class PlanStatus(enum.Enum):
     OPENING_FAILED = "opening_failed"
 
 
+#: a given plan's gripper commands (``partscene.plan/1``, :mod:`planners.plan_file`): ``open`` opens the fingers
+#: at the segment's start (letting go of a grasp) and keeps them open; ``close`` closes them at the segment's
+#: end, after its motion (a grasp forms where a handle is between the pads); ``hold`` keeps them as they are
+GRIPPER_COMMANDS = ("open", "close", "hold")
+
+
+@dataclass(frozen=True)
+class Expectation:
+    """What a segment of a given plan is meant to do to the world: move scene joint ``joint`` from
+    ``start`` to ``end`` (m or rad, the joint's values; written ``from`` / ``to`` in a plan file)."""
+
+    joint: str
+    start: float
+    end: float
+
+    @property
+    def amount(self) -> float:
+        """The requested opening, ``end - start`` (m or rad; negative: toward the lower limit)."""
+        return self.end - self.start
+
+
 @dataclass(frozen=True)
 class Segment:
     """One piece of the plan, sampled densely enough to execute by interpolation.
@@ -253,6 +274,14 @@ class Segment:
         Planned tool pose; during ``open`` this is where the handle grasp frame is planned to be.
     gripper : "open" | "closed"
         Gripper command held during the segment.
+    t : (n,) float or None
+        Seconds from the segment's start at which each waypoint is reached (0 first, increasing): the
+        timing of a given plan, executed as it is. None: the executor times the segment itself.
+    command : "open" | "close" | "hold" or None
+        A given plan's gripper command (:data:`GRIPPER_COMMANDS`); None: a planner's segment, whose
+        gripper actions follow from its ``name`` and ``gripper``.
+    expect : Expectation or None
+        What the segment is meant to do to a scene joint (given plans).
     """
 
     name: str
@@ -260,6 +289,9 @@ class Segment:
     object_q: np.ndarray
     T_world_tool: np.ndarray
     gripper: str
+    t: np.ndarray | None = None
+    command: str | None = None
+    expect: Expectation | None = None
 
     def __post_init__(self) -> None:
         q = np.atleast_2d(np.asarray(self.q, dtype=float))
@@ -271,6 +303,13 @@ class Segment:
                              f"object_q{object_q.shape} T_world_tool{T.shape}")
         if self.gripper not in ("open", "closed"):
             raise ValueError(f"Segment {self.name!r}: gripper must be 'open' or 'closed', got {self.gripper!r}")
+        if self.command is not None and self.command not in GRIPPER_COMMANDS:
+            raise ValueError(f"Segment {self.name!r}: command must be one of {GRIPPER_COMMANDS}, got {self.command!r}")
+        if self.t is not None:
+            t = np.asarray(self.t, dtype=float).reshape(-1)
+            if t.shape != (n,) or (n and t[0] != 0.0) or np.any(np.diff(t) <= 0):
+                raise ValueError(f"Segment {self.name!r}: t must be {n} increasing times from 0, got {t}")
+            object.__setattr__(self, "t", t)
         object.__setattr__(self, "q", q)
         object.__setattr__(self, "object_q", object_q)
         object.__setattr__(self, "T_world_tool", T)
@@ -321,6 +360,27 @@ class PlanResult:
     @property
     def ok(self) -> bool:
         return self.status is PlanStatus.OK
+
+    @property
+    def opening_segment(self) -> str:
+        """The name of the segment that opens the task joint: ``"open"`` for a planner's plan; for a given
+        plan the segment whose expectation names the task joint."""
+        for s in self.segments:
+            if s.expect is not None and s.expect.joint == self.task.joint:
+                return s.name
+        return "open"
+
+    @property
+    def release_segment(self) -> str:
+        """The name of the segment at whose end the opened part must be at rest: ``"release"`` for a
+        planner's plan; for a given plan the first segment after :attr:`opening_segment` that opens the
+        gripper (the opening segment itself when none does)."""
+        names = [s.name for s in self.segments]
+        opening = self.opening_segment
+        if opening not in names or all(s.command is None for s in self.segments):
+            return "release"
+        i = names.index(opening)
+        return next((s.name for s in self.segments[i + 1:] if s.command == "open"), opening)
 
     def segment(self, name: str) -> Segment:
         """The segment called ``name`` (KeyError if absent)."""

@@ -13,6 +13,7 @@ as the planner returned it.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import logging
 import time
@@ -90,6 +91,7 @@ class Session:
         self.ref_joints = read_scene_joints(against) if against is not None else self.scene_joints
         self.scene_links = set(scene_link_names(scene))
         self.last_rollout: Rollout | None = None
+        self.save_plan, self.robot_label = False, "default"    # certify(save_plan=...): write out/plans/<joint>.plan.json
         self.load_seconds = time.perf_counter() - t0
 
     def close(self) -> None:
@@ -139,6 +141,11 @@ class Session:
             return TaskCertificate(task.action, task.joint, outcome_of_unplanned(plan.status), reason,
                                    float(plan.amount), unit, (plan_found(False, plan.reason),), seed, timings,
                                    plan_status=plan.status.name)
+        if out is not None and self.save_plan and plan.method != "given":
+            from simcheck.given_plan import given_from_result, plan_path
+            from simcheck.plan_file import write_plan
+            write_plan(given_from_result(plan, self.plan_world.robot_max_velocity(), self.physics, self.robot_label),
+                       plan_path(out, _safe(task.joint)))
         t = time.perf_counter()
         check = recheck_plan(self.plan_world, plan, criteria)
         timings["recheck"] = time.perf_counter() - t
@@ -165,23 +172,34 @@ class Session:
             camera = KeyFrameCamera(w, w.scene_link_pose(handle)[:3, 3], self._robot_side(plan), out / "images",
                                     _safe(task.joint), video=video)
         counter = {"n": 0}
+        given = plan.method == "given"
+        traced = tuple(i.name for i in w.scene_joints() if i.type in ("prismatic", "revolute", "continuous")) if given else ()
+        trace_rows: list[list[float]] = []
 
         def on_sample():
             counter["n"] += 1
-            if counter["n"] % 15 == 0:
+            if camera is not None and video and counter["n"] % 15 == 0:
                 camera.frame()
+            if given:
+                trace_rows.append([w.scene_joint_state(n)[0] for n in traced])
 
         t, c0 = time.perf_counter(), time.process_time()
         rollout = execute_task(w, plan, self.physics, requested_amount=requested,
                                opening_type="revolute" if est.type == "continuous" else est.type.value,
                                opening_axis=sign * np.asarray(est.axis_world, dtype=float),
                                frame_callback=camera.snap if camera else None,
-                               sample_callback=on_sample if camera is not None and video else None)
+                               sample_callback=on_sample if given or camera is not None and video else None)
         self.last_rollout = rollout
         timings["execute"] = time.perf_counter() - t
         timings["execute_cpu"] = time.process_time() - c0
         timings["simulated"] = rollout.duration
         crit.extend(rollout_criteria(rollout, criteria))
+        if given:
+            from simcheck.given_plan import given_criteria
+            from simcheck.plan_expectations import ArticulationTrace
+            trace = ArticulationTrace(traced, np.asarray(trace_rows, dtype=float).reshape(rollout.n, len(traced)),
+                                      rollout.t, rollout.segment, rollout.segment_names)
+            crit.extend(given_criteria(plan, trace, w.robot_max_velocity(), self.robot.max_acceleration, criteria))
         rel_rollout, rel_images = "", []
         if out is not None:
             path = rollout.save(out / "rollouts" / f"{_safe(task.joint)}.npz")
@@ -218,6 +236,11 @@ class Session:
             reason = (f"{'; '.join(hints)} -- evidence: {evidence}" if hints else evidence)
         return TaskCertificate(task.action, task.joint, status, reason, float(plan.amount), unit, tuple(crit), seed,
                                timings, rollout or "", tuple(images), plan_status="OK")
+
+
+def _robot_label(save_plan: bool | str) -> str:
+    """The robot a saved plan names: ``save_plan`` when it is a robot spec path, else "default"."""
+    return save_plan if isinstance(save_plan, str) and save_plan else "default"
 
 
 #: the longest file stem :func:`_safe` makes of a joint name (characters, before its hash suffix)
@@ -257,7 +280,7 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
             amounts=None, criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
             planner_config: PlannerConfig = PlannerConfig(), images: bool = True, video: bool = False,
             gui: bool = False, carry_state: bool = False, robust: int | None = None, min_success: float = 0.9,
-            replay_sample: int | None = None) -> Certificate:
+            replay_sample: int | None = None, save_plan: bool | str = False) -> Certificate:
     """Certify each task on ``scene``; returns the :class:`Certificate` (written to ``out`` if given).
 
     Args:
@@ -278,6 +301,9 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         robust: execute each task's plan in this many worlds sampled from the scan's uncertainty, physics
             ranges and robot errors too; certified only if the 95 % lower bound on the success rate reaches
             ``min_success`` (:mod:`simcheck.robust`). ``replay_sample``: run only that sample.
+        save_plan: write each planned task's plan, timed as the executor runs it, to
+            ``out/plans/<joint>.plan.json`` (``partscene.plan/1``; replay it with :func:`simcheck.certify_plan`);
+            a string is the robot spec recorded in the file (True: "default").
 
     Raises:
         SimcheckInputError (SceneLoadError, RobotBindingError) and ``planners.PlannerInputError``
@@ -293,14 +319,14 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         cert = certify(scene, tasks, against=against, seed=seed, out=out, robot=robot, planner=planner,
                        amounts=amounts, criteria=criteria, physics=physics, planner_config=planner_config,
                        images=images, video=video, gui=gui, carry_state=carry_state, robust=robust,
-                       min_success=min_success, replay_sample=replay_sample)
+                       min_success=min_success, replay_sample=replay_sample, save_plan=save_plan)
         if not untested:
             return cert
         cert = dataclasses.replace(cert, untested=untested)
         return dataclasses.replace(cert, path=cert.write(cert.path.parent)) if cert.path is not None else cert
     if robust is not None or replay_sample is not None:
         from simcheck.robust import certify_robustly
-        return certify_robustly(certify, scene, tasks, robust=robust, min_success=min_success,
+        return certify_robustly(functools.partial(certify, save_plan=save_plan), scene, tasks, robust=robust, min_success=min_success,
                                 replay_sample=replay_sample, against=against, seed=seed, out=out, robot=robot,
                                 planner=planner, amounts=amounts, criteria=criteria, physics=physics,
                                 planner_config=planner_config, images=images, video=video, gui=gui)
@@ -332,6 +358,7 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
     results = []
     if carry_state:
         with Session(scene, against, sim_robot, physics, gui=gui) as session:
+            session.save_plan, session.robot_label = bool(save_plan), _robot_label(save_plan)
             for i, task in enumerate(parsed):
                 start = session.exec_world.robot_q() if i else None
                 results.append(_run_task(session, task, planner, seed, criteria, out_dir, images, video, start,
@@ -339,6 +366,7 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
     else:
         for task in parsed:                       # fresh worlds: a task's verdict never depends on the others
             with Session(scene, against, sim_robot, physics, gui=gui) as session:
+                session.save_plan, session.robot_label = bool(save_plan), _robot_label(save_plan)
                 results.append(_run_task(session, task, planner, seed, criteria, out_dir, images, video, None,
                                          session.load_seconds))
     certificate = Certificate(tasks=tuple(results), scene=str(scene), against=str(against) if against else None,

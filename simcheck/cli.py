@@ -3,6 +3,8 @@
     simcheck certify SCENE.urdf (--task open-drawer:JOINT --task open-door:JOINT ... | --all-movable)
                      [--amount A ...] [--against REFERENCE.urdf] [--out DIR] [--seed S] [--gui] [--video]
                      [--robot SPEC] [--robust N [--min-success P] [--replay-sample I]] [--json]
+                     [--save-plan]
+    simcheck certify-plan SCENE.urdf PLAN.json [--against REFERENCE.urdf] [--out DIR] [--robust N ...] [--json]
     simcheck run SCENARIO.yaml [--out DIR] [--seed S] [--gui] [--video] [--json]
     simcheck batch MANIFEST --out DIR [--workers N] [--address ADDR] ...   (simcheck.batching.command)
 
@@ -40,6 +42,13 @@ def _parser() -> argparse.ArgumentParser:
         sp.add_argument("--json", action="store_true",
                         help="print the certificate's summary as JSON on stdout (logging stays on stderr)")
 
+    def robust_options(sp):
+        rb = sp.add_argument_group("robust certification (worlds sampled from the scan's uncertainty)")
+        rb.add_argument("--robust", type=int, default=None, metavar="N", help="execute the plan in N sampled worlds")
+        rb.add_argument("--min-success", type=float, default=0.9, metavar="P",
+                        help="certify when, with 95%% confidence, at least P of such worlds succeed (default 0.9)")
+        rb.add_argument("--replay-sample", type=int, default=None, metavar="I", help="execute sample I alone")
+
     c = sub.add_parser("certify", help="certify tasks on a scene URDF", parents=[verbosity])
     c.add_argument("scene", help="scene URDF to plan on (an estimate or a truth)")
     c.add_argument("--task", action="append", default=[], metavar="KIND:JOINT",
@@ -51,12 +60,18 @@ def _parser() -> argparse.ArgumentParser:
                    help="opening, m or rad: one for all tasks or one per task (default: 90%% of the range, doors <= 90 deg)")
     c.add_argument("--against", default=None, help="reference URDF to execute on (joints matched by name)")
     c.add_argument("--robot", default="default", help="'default' or a robot spec YAML/JSON file")
-    rb = c.add_argument_group("robust certification (worlds sampled from the scan's uncertainty)")
-    rb.add_argument("--robust", type=int, default=None, metavar="N", help="execute the plan in N sampled worlds")
-    rb.add_argument("--min-success", type=float, default=0.9, metavar="P",
-                    help="certify when, with 95%% confidence, at least P of such worlds succeed (default 0.9)")
-    rb.add_argument("--replay-sample", type=int, default=None, metavar="I", help="execute sample I alone")
+    c.add_argument("--save-plan", action="store_true",
+                   help="also write each task's plan as DIR/plans/<joint>.plan.json (partscene.plan/1, replayable "
+                        "with certify-plan)")
+    robust_options(c)
     common(c)
+    g = sub.add_parser("certify-plan", help="certify a given plan file (partscene.plan/1) on a scene URDF",
+                       parents=[verbosity])
+    g.add_argument("scene", help="scene URDF to execute the plan on")
+    g.add_argument("plan", help="plan file (partscene.plan/1 JSON; docs/plan_format.md)")
+    g.add_argument("--against", default=None, help="reference URDF to execute on instead (joints matched by name)")
+    robust_options(g)
+    common(g)
     r = sub.add_parser("run", help="run a scenario YAML (tasks in sequence, world state carried over)",
                        parents=[verbosity])
     r.add_argument("scenario")
@@ -78,7 +93,8 @@ def main(argv: list[str] | None = None) -> int:
     from scenes.outcome import Outcome, exit_code, internal_error
     from scenes.description import InputError
 
-    what = f"certifying {args.scene}" if args.command == "certify" else f"running scenario {args.scenario}"
+    what = (f"running scenario {args.scenario}" if args.command == "run" else
+            f"certifying {args.plan} on {args.scene}" if args.command == "certify-plan" else f"certifying {args.scene}")
     try:
         from planners.task import ALL_MOVABLE
         from simcheck.certification import certify
@@ -93,7 +109,14 @@ def main(argv: list[str] | None = None) -> int:
             cert = certify(args.scene, ALL_MOVABLE if args.all_movable else args.task, against=args.against,
                            amounts=args.amount or None, seed=args.seed or 0, out=Path(args.out), robot=robot,
                            images=not args.no_images, video=args.video, gui=args.gui, robust=args.robust,
-                           min_success=args.min_success, replay_sample=args.replay_sample)
+                           min_success=args.min_success, replay_sample=args.replay_sample,
+                           save_plan=(args.robot if args.robot == "default" else str(Path(args.robot).resolve()))
+                           if args.save_plan else False)
+        elif args.command == "certify-plan":
+            from simcheck.given_plan import certify_plan
+            cert = certify_plan(args.scene, args.plan, against=args.against, out=Path(args.out), seed=args.seed or 0,
+                                images=not args.no_images, video=args.video, gui=args.gui, robust=args.robust,
+                                min_success=args.min_success, replay_sample=args.replay_sample)
         else:
             cert = run_scenario(args.scenario, out=Path(args.out), seed=args.seed, images=not args.no_images,
                                          video=args.video, gui=args.gui)

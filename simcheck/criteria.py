@@ -124,7 +124,7 @@ def opened_overshoot(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> Criter
 def handle_path_deviation(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
     """Max distance, m, between the grasped point of the handle and the planned tool position over the
     opening segment (time-aligned: the plan's pose at the same instant, and its last pose while holding)."""
-    mask = r.in_segment("open") & np.all(np.isfinite(r.planned_tool_pos), axis=1)
+    mask = r.in_segment(r.opening_segment) & np.all(np.isfinite(r.planned_tool_pos), axis=1)
     desc = "max distance between the grasped handle point and the planned path during the opening"
     if not mask.any():
         return _judge("handle_path_deviation", math.inf, c.handle_path_tolerance, "<=", "m", desc,
@@ -132,12 +132,14 @@ def handle_path_deviation(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> C
     d = np.linalg.norm(r.grasp_point[mask] - r.planned_tool_pos[mask], axis=1)
     if not np.isfinite(d).any():
         return _judge("handle_path_deviation", math.inf, c.handle_path_tolerance, "<=", "m", desc,
-                      f"handle link {r.handle_link} was never grasped, so it did not follow the planned path")
+                      f"handle link {r.handle_link} was never grasped, so it did not follow the planned path "
+                      f"during segment {r.opening_segment!r}")
     lost = ~np.isfinite(d)
     worst = int(np.nanargmax(d))
     t = r.t[mask][worst]
     value = math.inf if lost.any() else float(d[worst])
-    detail = (f"handle {r.handle_link} left the planned path by {np.nanmax(d):.3f} m at t={t:.2f} s"
+    detail = (f"handle {r.handle_link} left the planned path by {np.nanmax(d):.3f} m at t={t:.2f} s during segment "
+              f"{r.opening_segment!r}"
               + (f" and was lost for {lost.mean():.0%} of the opening" if lost.any() else "")
               + f" (the articulation of {r.joint} does not move the handle along the planned path)")
     return _judge("handle_path_deviation", value, c.handle_path_tolerance, "<=", "m", desc, detail)
@@ -147,7 +149,7 @@ def at_release(r: Rollout) -> int:
     """Index of the sample at which the moved part must be at rest: the last sample of the release
     segment (the fingers have opened and the robot has held still for its settle time), before the
     retreat and the final hold; the last sample when the plan has no release segment."""
-    release = np.flatnonzero(r.in_segment("release"))
+    release = np.flatnonzero(r.in_segment(r.release_segment))
     return int(release[-1]) if len(release) else r.n - 1
 
 
@@ -208,21 +210,22 @@ def unexpected_contact_depth(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -
 def grasp_held(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
     """Max slip, m, between the tool and the grasped point of the handle during the opening segment
     (``inf`` if the grasp did not exist for the whole segment)."""
-    mask = r.in_segment("open")
+    mask = r.in_segment(r.opening_segment)
     desc = "max slip between the tool and the grasped handle point while opening (inf: grasp not held)"
     note = f" ({r.grasp_note})" if r.grasp_note else ""
     if not mask.any():
         return _judge("grasp_held", math.inf, c.grasp_slip_tolerance, "<=", "m", desc,
-                      f"no opening segment was executed for joint {r.joint}{note}")
+                      f"no opening segment ({r.opening_segment!r}) was executed for joint {r.joint}{note}")
     active = r.grasp_active[mask]
     if not active.any():
         return _judge("grasp_held", math.inf, c.grasp_slip_tolerance, "<=", "m", desc,
-                      f"the gripper never held handle {r.handle_link}{note}")
+                      f"the gripper never held handle {r.handle_link} during segment {r.opening_segment!r}{note}")
     slip = np.linalg.norm(r.grasp_point[mask] - r.tool_pos[mask], axis=1)
     if not active.all():
         t_lost = r.t[mask][int(np.argmin(active))]
         return _judge("grasp_held", math.inf, c.grasp_slip_tolerance, "<=", "m", desc,
-                      f"the grasp of handle {r.handle_link} was lost at t={t_lost:.2f} s{note}")
+                      f"the grasp of handle {r.handle_link} was lost at t={t_lost:.2f} s during segment "
+                      f"{r.opening_segment!r}{note}")
     value = float(np.max(slip))
     return _judge("grasp_held", value, c.grasp_slip_tolerance, "<=", "m", desc,
                   f"handle {r.handle_link} slipped {value:.3f} m in the gripper{note}")

@@ -14,7 +14,7 @@ from planners.errors import TaskSpecError
 from scenes.description import InputError, PartsceneError
 
 __all__ = ["SimcheckError", "SimcheckInputError", "SceneLoadError", "TaskSpecError", "RobotBindingError",
-           "ScenarioError", "RolloutFormatError"]
+           "ScenarioError", "RolloutFormatError", "PlanFileError"]
 
 
 class SimcheckError(PartsceneError):
@@ -35,6 +35,11 @@ class RobotBindingError(SimcheckInputError):
 
 class ScenarioError(SimcheckInputError):
     """A scenario YAML file is malformed (names the file and the field)."""
+
+
+class PlanFileError(SimcheckInputError):
+    """A plan file (``partscene.plan/1``) or given plan is malformed or does not fit the robot, scene or
+    carried-over state (names the file and the field: segment, waypoint, column and joint)."""
 
 
 class RolloutFormatError(SimcheckError):

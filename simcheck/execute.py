@@ -43,7 +43,8 @@ from simcheck.grasp import grasp_formation
 from simcheck.rollout import Rollout
 from simcheck.world import World
 
-__all__ = ["execute_task", "handle_link_for", "moving_link_for", "timed_waypoints"]
+__all__ = ["execute_task", "handle_link_for", "moving_link_for", "timed_waypoints", "speed_limits",
+           "command_trajectory"]
 
 log = logging.getLogger(__name__)
 
@@ -217,9 +218,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
     rec = _Recorder(world, joint, moving, handle, config)
     rec.sample_callback = sample_callback
     q0_obj = world.scene_joint_state(joint)[0]
-    vmax_urdf = world.robot_max_velocity()
-    vmax = np.where(vmax_urdf > 0, np.minimum(vmax_urdf * config.speed_scale, config.max_joint_speed),
-                    config.max_joint_speed)
+    vmax = speed_limits(world.robot_max_velocity(), config)
     notes: list[str] = []
     if reset_robot:
         world.reset_robot(plan.segments[0].q[0], fingers_open=True)
@@ -269,21 +268,28 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
             rec.T_handle_grasp = np.linalg.inv(world.scene_link_pose(handle)) @ T_w_tool
             snap("grasped")
         else:
-            notes.append(f"no grasp: {formed.reason}")
+            where = plan.segments[rec.segment].name if 0 <= rec.segment < len(plan.segments) else "?"
+            notes.append(f"no grasp: {formed.reason} (the fingers closed in segment {where!r})")
 
     hold = plan.segments[0].q[0]
+    opening = plan.opening_segment
     for i, seg in enumerate(plan.segments):
         rec.segment = i
-        want_open = seg.gripper == "open"
-        if want_open and not fingers_open or seg.name == RELEASE and not fingers_open:
+        if seg.command is not None:              # a given plan: its gripper command (planners.task.GRIPPER_COMMANDS)
+            open_first, close_first, close_after = seg.command == "open", False, seg.command == "close"
+        else:                                    # a planner's plan: its segment names say what to do
+            want_open = seg.gripper == "open"
+            open_first = want_open or seg.name == RELEASE
+            close_first, close_after = not want_open and seg.name != GRASP, seg.name == GRASP
+        if open_first and not fingers_open:
             set_fingers(True, config.gripper_open_time, hold)
-        if not want_open and fingers_open and seg.name != GRASP:
+        if close_first and fingers_open:
             close_and_grasp(hold)
         hold = _follow(world, rec, seg, vmax * (config.open_speed_scale if seg.name == OPEN else 1.0), config,
                        check_slip)
-        if seg.name == OPEN:
+        if seg.name == opening:
             snap("opened")
-        if seg.name == GRASP and fingers_open:
+        if close_after and fingers_open:
             close_and_grasp(hold)
         rec.planned_tool = np.full(3, np.nan)
         rec.planned_object_q = np.nan
@@ -313,7 +319,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
         grasp_turn=np.asarray(rows["grasp_turn"]), opening_type=opening_type,
         robot_q_target=np.asarray(rows["robot_q_target"]), finger_links=tuple(robot.finger_links),
         opening_axis=None if opening_axis is None else np.asarray(opening_axis, dtype=float).reshape(3),
-        holding_force=float(rec.holding_force),
+        holding_force=float(rec.holding_force), opening_segment=opening, release_segment=plan.release_segment,
         finger_q=np.asarray(rows["finger_q"]).reshape(len(rows["t"]), -1),
         finger_contacts=np.asarray(rows["finger_contacts"], dtype=int),
         contact_sample=np.asarray([c[0] for c in cr], dtype=int),
@@ -325,6 +331,35 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
         object_contact_link=np.asarray([c[1] for c in orows], dtype=str),
         object_contact_force=np.asarray([c[2] for c in orows], dtype=float),
         wall_time=time.perf_counter() - t0)
+
+
+def speed_limits(vmax_urdf: np.ndarray, config: PhysicsConfig = DEFAULT_PHYSICS) -> np.ndarray:
+    """(dof,) the joint speeds, rad/s or m/s, at which the executor times a planner's segment: ``speed_scale``
+    x the URDF limits ``vmax_urdf`` (dof,), capped at ``max_joint_speed`` (which also stands for unset, 0, limits)."""
+    vmax_urdf = np.asarray(vmax_urdf, dtype=float)
+    return np.where(vmax_urdf > 0, np.minimum(vmax_urdf * config.speed_scale, config.max_joint_speed),
+                    config.max_joint_speed)
+
+
+def command_trajectory(seg: Segment, vmax: np.ndarray, config: PhysicsConfig = DEFAULT_PHYSICS
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """The timing the executor gives ``seg`` (a planner's segment, ``vmax`` (dof,) from :func:`speed_limits`,
+    times the opening segment's ``open_speed_scale`` for the opening), as explicit waypoints:
+    ``(t (m,) s from the segment's start, q (m, dof), tool positions (m, 3) or None)``: the position targets
+    of every control step, without the ones that lie on the straight line between their neighbours.
+    Executed with these times (``Segment.t``) the robot gets the same position targets at every control step."""
+    k, q, _, tool_k, _, _ = _targets(seg, vmax, config)
+    t = np.concatenate([[0.0], k * config.time_step])
+    q = np.concatenate([seg.q[:1], q])
+    tool = seg.T_world_tool[:, :3, 3] if seg.T_world_tool is not None else None
+    tool = np.concatenate([tool[:1], tool_k]) if tool is not None and tool_k is not None else None
+    if len(t) < 2:
+        return t, q, tool
+    y = q if tool is None else np.concatenate([q, tool], axis=1)
+    w = ((t[1:-1] - t[:-2]) / (t[2:] - t[:-2]))[:, None]
+    between = (1 - w) * y[:-2] + w * y[2:]
+    keep = np.concatenate([[True], np.abs(y[1:-1] - between).max(axis=1) > 1e-12, [True]])
+    return t[keep], q[keep], tool[keep] if tool is not None else None
 
 
 def _ramped(t: np.ndarray, duration: float, ramp: float) -> tuple[np.ndarray, np.ndarray]:
@@ -345,15 +380,20 @@ def _targets(seg: Segment, vmax: np.ndarray, config: PhysicsConfig):
     """Every control step's robot target along ``seg``: (step numbers k (m,), q (m, dof), qd (m, dof),
     planned tool position (m, 3) or None, planned object q (m,) or None), and the step count.
 
-    The segment is time-parametrised by :func:`timed_waypoints`, then ramped (:func:`_ramped`, over
+    A segment with its own times (``seg.t``, a given plan) is interpolated at them as they are. Otherwise
+    the segment is time-parametrised by :func:`timed_waypoints`, then ramped (:func:`_ramped`, over
     ``ramp_time``: a real arm's acceleration is bounded, and a part grasped and jerked to speed in one step
     would take an impulse no gripper transmits); targets are linear interpolations between waypoints at
     the ramped path time of t = k * time_step for the steps k that send a command (every
     ``control_every``-th, from 1).
     """
-    times = timed_waypoints(seg.q, vmax, config.time_step)
-    ramp = min(config.ramp_time, times[-1])
-    n_steps = int(np.ceil((times[-1] + ramp) / config.time_step))
+    if seg.t is not None:                     # a given plan's own timing, executed as it is
+        times, ramp = seg.t, 0.0
+        n_steps = int(np.ceil(times[-1] / config.time_step - 1e-9))
+    else:
+        times = timed_waypoints(seg.q, vmax, config.time_step)
+        ramp = min(config.ramp_time, times[-1])
+        n_steps = int(np.ceil((times[-1] + ramp) / config.time_step))
     k = np.arange(1, n_steps + 1, config.control_every)
     tool = seg.T_world_tool[:, :3, 3] if seg.T_world_tool is not None else None
     if len(times) == 1:

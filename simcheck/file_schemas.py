@@ -43,6 +43,7 @@ SCENARIO_SCHEMA = {
                                               "opens toward the lower limit"},
                     "grasp_point": _POINT,
                     "grasp_link": {"type": "string", "description": "a link name"},
+                    "plan": {"type": "string", "description": "the path of a plan file (partscene.plan/1)"},
                 },
             },
         },
@@ -70,6 +71,7 @@ ROBOT_SPEC_SCHEMA = {
         "finger_open": {"type": "number", "description": "a finger opening in metres"},
         "finger_closed": {"type": "number", "description": "a finger opening in metres"},
         "max_finger_force": {"type": "number", "exclusiveMinimum": 0, "description": "a force in newtons"},
+        "max_acceleration": {**_NUMBERS, "description": "one acceleration limit per base and arm joint (m/s^2, rad/s^2)"},
         "gripper": {
             "type": "object", "additionalProperties": False,
             "description": "a mapping with grip_force (N) and pad_friction",

@@ -35,6 +35,7 @@ class SimRobot:
         finger_links: links that must touch the handle before the grasp is made.
         base_links: links allowed to touch the floor (the mobile base).
         gripper: what the gripper holds (``planners.robot.GripperModel``): the grasp's force bound.
+        max_acceleration: acceleration limits of ``joint_names``, m/s^2 or rad/s^2 (empty: not given).
     """
 
     urdf: Path
@@ -48,6 +49,7 @@ class SimRobot:
     base_links: tuple[str, ...] = ()
     finger_force: float = 40.0
     gripper: GripperModel = GripperModel()
+    max_acceleration: tuple[float, ...] = ()
 
     def __post_init__(self) -> None:
         if not Path(self.urdf).is_file():
@@ -107,7 +109,8 @@ def sim_robot_from_spec(spec) -> SimRobot:
                     gripper_links=tuple(gripper_links) or (str(tool),) + finger_links,
                     finger_links=finger_links, base_links=_base_links(spec),
                     finger_force=float(_first(spec, ("finger_force", "max_finger_force", "gripper_force"), 40.0)),
-                    gripper=_first(spec, ("gripper",), GripperModel()))
+                    gripper=_first(spec, ("gripper",), GripperModel()),
+                    max_acceleration=tuple(float(v) for v in _first(spec, ("max_acceleration",), ())))
 
 
 def _base_links(spec) -> tuple[str, ...]:

@@ -56,7 +56,7 @@ def load_robot_spec(spec: str | None):
     check_document(doc, ROBOT_SPEC_SCHEMA, "robot spec", path, RobotBindingError)
     doc = dict(doc)
     doc["urdf"] = (path.parent / doc["urdf"]).resolve()
-    for key in ("base_joints", "arm_joints", "finger_joints", "gripper_links", "home"):
+    for key in ("base_joints", "arm_joints", "finger_joints", "gripper_links", "home", "max_acceleration"):
         if key in doc:
             doc[key] = tuple(doc[key])
     if "ignore_pairs" in doc:

@@ -23,7 +23,7 @@ ROLLOUT_FORMAT = "partscene.rollout/1"
 
 _META = ("joint", "moving_link", "handle_link", "robot_joint_names", "segment_names", "gripper_links",
          "requested_amount", "object_q0", "grasp_note", "time_step", "holding_force", "opening_type",
-         "finger_links")
+         "finger_links", "opening_segment", "release_segment")
 
 
 @dataclass(frozen=True)
@@ -71,6 +71,9 @@ class Rollout:
         object_contact_sample, object_contact_link, object_contact_force: (k,) contacts of the moving
             link with other scene links / the floor (what blocked it), same aggregation.
         wall_time: seconds of wall-clock time the execution took.
+        opening_segment, release_segment: the names of the segment that opens the task joint and of the
+            segment at whose end the part must rest ("open" and "release" for a planner's plan; a given
+            plan's own names, :attr:`planners.PlanResult.opening_segment`).
     """
 
     joint: str
@@ -116,6 +119,8 @@ class Rollout:
     finger_links: tuple[str, ...] = ()
     opening_axis: np.ndarray | None = None
     holding_force: float = float("nan")
+    opening_segment: str = "open"
+    release_segment: str = "release"
 
     def __post_init__(self) -> None:
         n = len(self.t)

@@ -10,6 +10,8 @@ state carried from task to task (drawer A stays open while door B is opened).
     tasks:
       - open-drawer:cabinet3_drawer12_joint
       - {kind: open-door, joint: cabinet5_door14_joint, amount: 1.2}   # also grasp_point, grasp_link
+      - plan: drawer.plan.json     # a given plan (partscene.plan/1, one expectation), replayed as it is;
+                                   # its first waypoint must be where the previous task left the robot
 
 Any other key is an error naming it and the closest valid key (:mod:`simcheck.file_schemas`).
 """
@@ -35,10 +37,15 @@ class Scenario:
     against: Path | None
     robot: str
     seed: int
-    tasks: tuple[OpenTask, ...]
+    tasks: tuple[OpenTask | Path, ...]     # a Path: a given plan file
 
 
-def _task(entry, path: Path, i: int) -> OpenTask:
+def _task(entry, path: Path, i: int) -> OpenTask | Path:
+    if isinstance(entry, dict) and "plan" in entry:
+        if len(entry) != 1:
+            raise ScenarioError(f"{path}: tasks[{i}] gives a plan file and {sorted(set(entry) - {'plan'})}: a plan "
+                                "entry is {plan: FILE} alone")
+        return (path.parent / str(entry["plan"])).resolve()
     if isinstance(entry, str):
         return parse_task(entry)
     if isinstance(entry, dict):

@@ -1,0 +1,225 @@
+"""Certify a user's own plan (``simcheck certify-plan``): a plan file or arrays, replayed in physics on the scene.
+
+    cert = simcheck.certify_plan("scene.urdf", "drawer.plan.json", against="truth.urdf", out="out/")
+
+How a given plan is judged: the robot is placed at the plan's first waypoint (the only jump, at t = 0), then
+the plan is executed as given -- its times, its gripper commands, tracked by the robot's controllers, no
+replanning (:func:`simcheck.execute.execute_task` on its timed segments) -- re-checked densely for
+collisions (:func:`simcheck.plan_recheck.recheck_plan`) and judged, once per expectation, by the criteria of
+a planned task (the expectation's segment playing the opening, the next segment that opens the gripper the
+release) plus: the expectation met by the end of its segment, every other articulation left where it was
+(:mod:`simcheck.plan_expectations`), and the plan's timing within the robot's limits
+(:mod:`simcheck.plan_timing`). Each expectation is a task of the certificate, executed in freshly loaded
+worlds (a scenario carries the world from plan to plan instead).
+
+The binding of a plan to the robot and the scene (:func:`bind_plan`) refuses with exit 2, naming the field: a
+joint the robot lacks or a robot joint the plan lacks, an expectation naming no movable scene joint, a plan
+without expectation, and in a scenario a first waypoint away from where the robot is.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+from pathlib import Path
+
+import numpy as np
+
+from planners.task import OpenTask, PlanResult, PlanStatus, Segment
+from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, PhysicsConfig
+from simcheck.errors import PlanFileError
+from simcheck.plan_file import GivenPlan, read_plan
+
+__all__ = ["certify_plan", "bind_plan", "given_planner", "given_from_result", "given_criteria", "plan_path",
+           "START_TOLERANCE"]
+
+log = logging.getLogger(__name__)
+
+#: how far, rad or m per joint, a scenario's given plan may start from where the robot is
+START_TOLERANCE = 1e-3
+
+_KIND_OF = {"prismatic": "drawer", "revolute": "door", "continuous": "door"}
+
+
+def _tool_poses(robot, q: np.ndarray) -> np.ndarray:
+    """(n, 4, 4) tool poses T_world_tool of ``robot`` (a planners.RobotSpec) at (n, dof) ``q``."""
+    from planners.plan import robot_kinematics
+
+    kin = robot_kinematics(robot)
+    return np.array([kin.tool_pose(x) for x in q])
+
+
+def _check_robot_joints(given: GivenPlan, robot) -> tuple[str, ...]:
+    """The robot's joint names, after checking ``given`` has one column per robot joint and an expectation."""
+    src = given.source
+    robot_names = tuple(robot.joint_names)
+    unknown = [n for n in given.joint_names if n not in robot_names]
+    if unknown:
+        raise PlanFileError(f"plan {src}: field 'joint_names': {unknown[0]!r} is not a joint of robot {robot.urdf.name} "
+                            f"(its joints: {', '.join(robot_names)})")
+    missing = [n for n in robot_names if n not in given.joint_names]
+    if missing:
+        raise PlanFileError(f"plan {src}: field 'joint_names' lacks robot joint {missing[0]!r} (give one column per "
+                            f"joint of robot {robot.urdf.name}: {', '.join(robot_names)})")
+    if not given.expectations:
+        raise PlanFileError(f"plan {src}: no segment has an 'expect': nothing to certify (say which joint a "
+                            "segment should move, e.g. {\"joint\": J, \"from\": 0.0, \"to\": 0.3})")
+    return robot_names
+
+
+def bind_plan(given: GivenPlan, robot, scene_joints: dict, scene) -> list[PlanResult]:
+    """One :class:`planners.PlanResult` per expectation of ``given`` for ``robot`` (a planners.RobotSpec) on a
+    scene whose joints are ``scene_joints`` (name -> joint with ``type``, from
+    :func:`simcheck.scene_joints.read_scene_joints` of ``scene``): columns in the robot's joint order, tool
+    poses by forward kinematics (``tool_positions`` of the file kept), the expected joint's planned value
+    interpolated in time over its segment.
+
+    Raises:
+        PlanFileError: naming the plan file and the field (see the module docstring).
+    """
+    src = given.source
+    robot_names = _check_robot_joints(given, robot)
+    for i, e in given.expectations:
+        j = scene_joints.get(e.joint)
+        if j is None or str(getattr(j.type, "value", j.type)) not in _KIND_OF:
+            movable = sorted(n for n, x in scene_joints.items() if str(getattr(x.type, "value", x.type)) in _KIND_OF)
+            what = "does not exist" if j is None else f"is {getattr(j.type, 'value', j.type)}"
+            raise PlanFileError(f"plan {src}: field 'segments[{i}].expect.joint': scene joint {e.joint!r} of {scene} "
+                                f"{what} (movable joints: {', '.join(movable[:12]) or 'none'})")
+    order = [given.joint_names.index(n) for n in robot_names]
+    segments = []
+    for s in given.segments:
+        q = s.q[:, order]
+        T = _tool_poses(robot, q)
+        given_tool = np.isfinite(s.T_world_tool[:, :3, 3]).all(axis=1)
+        T[given_tool, :3, 3] = s.T_world_tool[given_tool, :3, 3]
+        segments.append(dataclasses.replace(s, q=q, T_world_tool=T))
+    plans = []
+    for i, e in given.expectations:
+        segs = []
+        value = e.start
+        for k, s in enumerate(segments):
+            if k == i:
+                obj = e.start + e.amount * s.t / s.t[-1] if s.t[-1] > 0 else np.full(len(s.t), e.end)
+                value = e.end
+            else:
+                obj = np.full(len(s.t), value if k > i else e.start)
+            segs.append(dataclasses.replace(s, object_q=obj))
+        kind = _KIND_OF[str(getattr(scene_joints[e.joint].type, "value", scene_joints[e.joint].type))]
+        task = OpenTask(kind, e.joint, e.amount)
+        plans.append(PlanResult(PlanStatus.OK, f"given plan {src}, segment {given.segments[i].name!r}", task,
+                                robot_names, tuple(segs), amount=e.amount, start_object_q=e.start, method="given"))
+    return plans
+
+
+class _GivenPlanner:
+    """A planner (``planner(scene, task, seed, start, scene_state)``) that returns the bound given plans; with
+    a ``start`` (a scenario's carried-over robot configuration) the first waypoint must match it."""
+
+    def __init__(self, plans: list[PlanResult], robot, source: str) -> None:
+        self.plans, self.robot_spec, self.source = plans, robot, source
+
+    def __call__(self, scene, task, seed, start=None, scene_state=None) -> PlanResult:
+        plan = next(p for p in self.plans if p.task == task)
+        if start is not None:
+            q0 = plan.segments[0].q[0]
+            off = np.abs(np.asarray(start, dtype=float) - q0)
+            if off.max() > START_TOLERANCE:
+                j = int(np.argmax(off))
+                raise PlanFileError(f"plan {self.source}: field 'segments[0].waypoints[0]' starts joint "
+                                    f"{plan.joint_names[j]} at {q0[j]:.4f}, but the robot is at {start[j]:.4f} after "
+                                    f"the previous task (at most {START_TOLERANCE} apart: the first waypoint must be "
+                                    "where the robot is)")
+        return plan
+
+
+def given_planner(plan, robot, scene):
+    """The tasks (one :class:`planners.OpenTask` per expectation) and the planner function that returns
+    ``plan`` (a :class:`GivenPlan` or a plan file path) bound to ``robot`` and ``scene``."""
+    from simcheck.scene_joints import read_scene_joints
+
+    given = plan if isinstance(plan, GivenPlan) else read_plan(plan)
+    _check_robot_joints(given, robot)             # the plan's own problems before the scene's
+    plans = bind_plan(given, robot, read_scene_joints(scene), scene)
+    return [p.task for p in plans], _GivenPlanner(plans, robot, given.source)
+
+
+def certify_plan(scene, plan, *, against=None, out=None, robot=None, seed: int = 0, robust: int | None = None,
+                 min_success: float = 0.9, replay_sample: int | None = None,
+                 criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
+                 images: bool = True, video: bool = False, gui: bool = False):
+    """Certify the given ``plan`` (a plan file path, or a :class:`GivenPlan` from
+    :func:`simcheck.plan_file.plan_from_arrays`) on ``scene``; returns the :class:`Certificate`, one task per
+    expectation (written to ``out`` if given).
+
+    Args:
+        against: a reference URDF to execute on instead of ``scene``.
+        robot: a planners.RobotSpec; default: the plan's ``robot`` ("default" or a robot spec file).
+        seed, robust, min_success, replay_sample: as for :func:`simcheck.certify` (the plan executed in
+            ``robust`` worlds sampled with ``seed``).
+
+    Raises:
+        PlanFileError (and the other SimcheckInputErrors): the plan or the scene cannot be used (exit 2).
+    """
+    from simcheck.certification import certify
+
+    given = plan if isinstance(plan, GivenPlan) else read_plan(plan)
+    if robot is None:
+        from simcheck.robot_spec_file import load_robot_spec
+        robot = load_robot_spec(given.robot)
+    tasks, planner = given_planner(given, robot, scene)
+    return certify(scene, tasks, against=against, out=out, robot=robot, planner=planner, seed=seed, criteria=criteria,
+                   physics=physics, images=images, video=video, gui=gui, robust=robust, min_success=min_success,
+                   replay_sample=replay_sample)
+
+
+def given_from_result(plan: PlanResult, vmax_urdf: np.ndarray, physics: PhysicsConfig = DEFAULT_PHYSICS,
+                      robot: str = "default") -> GivenPlan:
+    """The planner's ``plan`` as a :class:`GivenPlan` with the timing simcheck's executor gives it
+    (:func:`simcheck.execute.command_trajectory`; ``vmax_urdf`` (dof,) the robot's URDF velocity limits):
+    replayed with :func:`certify_plan` the robot gets the same position targets at every control step.
+    Gripper commands: ``grasp`` closes at its end, ``open`` holds, segments with the gripper open open it;
+    the ``open`` segment expects the task joint to move from ``start_object_q`` by ``amount``."""
+    from planners.task import Expectation
+    from simcheck.execute import command_trajectory, speed_limits
+
+    vmax = speed_limits(vmax_urdf, physics)
+    segments = []
+    for s in plan.segments:
+        t, q, tool = command_trajectory(s, vmax * (physics.open_speed_scale if s.name == "open" else 1.0), physics)
+        T = np.full((len(t), 4, 4), np.nan)
+        if tool is not None:
+            T[:, :3, 3] = tool
+        command = "close" if s.name == "grasp" else ("hold" if s.gripper == "closed" else "open")
+        expect = (Expectation(plan.task.joint, plan.start_object_q, plan.start_object_q + plan.amount)
+                  if s.name == "open" else None)
+        segments.append(Segment(s.name, q, np.full(len(t), np.nan), T, s.gripper, t=t, command=command,
+                                expect=expect))
+    return GivenPlan(robot=robot, joint_names=tuple(plan.joint_names), segments=tuple(segments),
+                     source=f"planned {plan.task}")
+
+
+def plan_path(out: Path, joint_stem: str) -> Path:
+    """Where ``--save-plan`` writes a task's plan: ``out/plans/<stem>.plan.json``."""
+    return Path(out) / "plans" / f"{joint_stem}.plan.json"
+
+
+
+def given_criteria(plan: PlanResult, trace, vmax_urdf: np.ndarray, amax, criteria: CriteriaConfig = DEFAULT_CRITERIA):
+    """The criteria a given plan adds to a planned task's: its expectation for the task joint met
+    (:func:`simcheck.plan_expectations.expectation_met`), every other articulation still
+    (:func:`~simcheck.plan_expectations.articulations_still`; ``trace`` an ArticulationTrace of the execution)
+    and its timing within ``vmax_urdf`` (dof,) and ``amax`` (dof,) (:func:`simcheck.plan_timing.timing_criteria`)."""
+    from simcheck.plan_expectations import articulations_still, expectation_met
+    from simcheck.plan_timing import timing_criteria
+
+    out = []
+    expected: dict[int, set[str]] = {}
+    for i, s in enumerate(plan.segments):
+        if s.expect is not None:
+            expected.setdefault(i, set()).add(s.expect.joint)
+            if s.expect.joint == plan.task.joint:
+                out.append(expectation_met(trace, i, s.expect, criteria))
+    out.append(articulations_still(trace, expected, criteria))
+    out.extend(timing_criteria(plan.segments, plan.joint_names, vmax_urdf, amax, criteria))
+    return tuple(out)

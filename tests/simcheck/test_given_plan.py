@@ -1,0 +1,138 @@
+"""simcheck/given_plan.py: a plan saved by ``certify --save-plan`` replayed with ``certify-plan`` gets the same
+criteria values; the same plan spoiled (base shifted 5 cm toward the drawer, gripper closed at the pre-grasp,
+expecting the other cabinet's drawer) fails with reasons naming the segment. Scene: the fixture cabinet twice,
+1 m apart (one drawer planned for, with the default robot)."""
+
+import json
+import re
+
+import numpy as np
+import pytest
+
+from simcheck.certification import certify
+from simcheck.cli import main
+from simcheck.certificate import Certificate
+from simcheck.plan_file import plan_to_dict, read_plan
+from simcheck_fixture_plans import CABINET
+
+DRAWER = "cabinet1_drawer2_joint"
+OTHER = "cabinet2_drawer2_joint"
+
+#: how close a replayed criterion must be to the planned run's: 1 % of the value, or this much per unit for
+#: values near zero (m: a millimetre; N: half a newton of a 140 N grasp bound; fractions and ratios: 0.01)
+ABS_TOL = {"m": 1e-3, "N": 0.5, "m/s": 5e-3, "rad/s": 0.02, "rad|m": 1e-3, "": 0.01}
+
+
+def _two_cabinets(path):
+    """The fixture cabinet and a copy of it 1 m along +y (links and joints cabinet2_*)."""
+    text = CABINET.read_text()
+    body = text[text.index("<link name=\"cabinet1_body1\""):text.index("</robot>")]
+    copy = body.replace("cabinet1_", "cabinet2_").replace(
+        '<parent link="world"/><child link="cabinet2_body1"/><origin xyz="0 0 0"',
+        '<parent link="world"/><child link="cabinet2_body1"/><origin xyz="0 1 0"')
+    assert copy.count('origin xyz="0 1 0"') == 1
+    path.write_text(text.replace("</robot>", copy + "</robot>"))
+    return path
+
+
+@pytest.fixture(scope="module")
+def planned(tmp_path_factory):
+    """(scene, the certificate of the planned drawer opening, its saved plan file)."""
+    out = tmp_path_factory.mktemp("given_plan")
+    scene = _two_cabinets(out / "two_cabinets.urdf")
+    cert = certify(scene, [f"open-drawer:{DRAWER}"], out=out / "planned", images=False, save_plan=True)
+    assert cert.ok, cert.summary()
+    return scene, cert, out / "planned" / "plans" / f"{DRAWER}.plan.json"
+
+
+def _run(scene, plan, out, capsys):
+    code = main(["certify-plan", str(scene), str(plan), "--out", str(out), "--no-images", "-q", "--json"])
+    return code, json.loads(capsys.readouterr().out)
+
+
+def test_our_plan_replayed_gets_the_same_criteria_values(planned, tmp_path, capsys):
+    scene, cert, plan = planned
+    code, summary = _run(scene, plan, tmp_path, capsys)
+    assert code == 0, summary
+    replay = Certificate.load(tmp_path)[DRAWER]
+    for c in cert[DRAWER].criteria:
+        r = replay.criterion(c.name)
+        assert r.passed
+        assert abs(r.value - c.value) <= max(0.01 * abs(c.value), ABS_TOL[c.unit]), (c.name, c.value, r.value)
+    extra = {c.name for c in replay.criteria} - {c.name for c in cert[DRAWER].criteria}
+    assert extra == {"expectation_met", "articulations_still", "waypoint_gap", "joint_speed", "joint_acceleration"}
+
+
+def _edited(plan_path, tmp_path, name, edit):
+    doc = plan_to_dict(read_plan(plan_path))
+    edit(doc)
+    out = tmp_path / f"{name}.plan.json"
+    out.write_text(json.dumps(doc))
+    return out
+
+
+def test_base_shifted_toward_the_drawer_fails_naming_the_segment(planned, tmp_path, capsys):
+    scene, _, plan_path = planned
+    plan = read_plan(plan_path)
+    grasp = plan.segments[1]
+    toward = grasp.T_world_tool[-1, :2, 3] - grasp.q[-1, :2]     # from the base to the handle, in the plane
+    shift = 0.05 * toward / np.linalg.norm(toward)
+
+    def edit(doc):
+        for s in doc["segments"]:
+            s.pop("tool_positions", None)
+            for row in s["waypoints"]:
+                row[0] += shift[0]
+                row[1] += shift[1]
+    code, summary = _run(scene, _edited(plan_path, tmp_path, "shifted", edit), tmp_path / "out", capsys)
+    assert code == 1
+    task = summary["tasks"][0]
+    assert task["status"] == "failed"
+    assert re.search(r"segment '(approach|grasp)'|during (approach|grasp)", task["reason"]), task["reason"]
+
+
+def test_gripper_closed_at_the_pre_grasp_fails_naming_the_segment(planned, tmp_path, capsys):
+    scene, _, plan_path = planned
+
+    def edit(doc):
+        doc["segments"][0]["gripper"] = "close"        # closes at the end of the approach: the pre-grasp pose
+        doc["segments"][1]["gripper"] = "hold"
+    code, summary = _run(scene, _edited(plan_path, tmp_path, "closed_early", edit), tmp_path / "out", capsys)
+    assert code == 1
+    reason = summary["tasks"][0]["reason"]
+    assert "the gripper never held handle cabinet1_handle3 during segment 'open'" in reason, reason
+    assert "the fingers closed in segment 'approach'" in reason, reason
+
+
+def test_a_plan_that_opens_the_wrong_drawer_fails_its_expectation(planned, tmp_path, capsys):
+    scene, _, plan_path = planned
+
+    def edit(doc):
+        doc["segments"][2]["expect"]["joint"] = OTHER
+    code, summary = _run(scene, _edited(plan_path, tmp_path, "wrong", edit), tmp_path / "out", capsys)
+    assert code == 1
+    task = summary["tasks"][0]
+    assert task["joint"] == OTHER and task["status"] == "failed"
+    assert f"segment 'open' expected {OTHER} to move from 0.000" in task["reason"]
+    assert f"moved scene joint {DRAWER}" in task["reason"]          # the drawer it did open, named
+
+
+def test_a_scenario_plan_must_start_where_the_robot_is(planned, tmp_path):
+    scene, _, plan_path = planned
+    from simcheck.errors import PlanFileError
+    from simcheck.run import run_scenario
+    sc = tmp_path / "twice.yaml"
+    sc.write_text(f"scene: {scene}\ntasks:\n  - plan: {plan_path}\n  - plan: {plan_path}\n")
+    with pytest.raises(PlanFileError, match=r"segments\[0\].waypoints\[0\]' starts joint \w+ at .* but the robot is at"):
+        run_scenario(sc, images=False)
+
+
+def test_a_scenario_mixes_a_given_plan_and_a_planned_task(planned, tmp_path):
+    scene, _, plan_path = planned
+    from simcheck.run import run_scenario
+    sc = tmp_path / "mixed.yaml"
+    sc.write_text(f"scene: {scene}\ntasks:\n  - plan: {plan_path}\n  - open-drawer:{OTHER}\n")
+    cert = run_scenario(sc, images=False)
+    assert [t.joint for t in cert.tasks] == [DRAWER, OTHER]
+    assert cert.ok, cert.summary()
+    assert cert[OTHER].start_state[DRAWER] > 0.3          # the given plan's opening carried over
