@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from planners.task import OpenTask, PlanResult, PlanStatus, Segment
+from planners.task import OPENING_KINDS, OpenTask, PlanResult, PlanStatus, Segment
 from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, PhysicsConfig
 from simcheck.errors import PlanFileError
 from simcheck.plan_file import GivenPlan, read_plan
@@ -37,9 +37,6 @@ log = logging.getLogger(__name__)
 
 #: how far, rad or m per joint, a scenario's given plan may start from where the robot is
 START_TOLERANCE = 1e-3
-
-_KIND_OF = {"prismatic": "drawer", "revolute": "door", "continuous": "door"}
-
 
 def _tool_poses(robot, q: np.ndarray) -> np.ndarray:
     """(n, 4, 4) tool poses T_world_tool of ``robot`` (a planners.RobotSpec) at (n, dof) ``q``."""
@@ -81,8 +78,8 @@ def bind_plan(given: GivenPlan, robot, scene_joints: dict, scene) -> list[PlanRe
     robot_names = _check_robot_joints(given, robot)
     for i, e in given.expectations:
         j = scene_joints.get(e.joint)
-        if j is None or str(getattr(j.type, "value", j.type)) not in _KIND_OF:
-            movable = sorted(n for n, x in scene_joints.items() if str(getattr(x.type, "value", x.type)) in _KIND_OF)
+        if j is None or str(getattr(j.type, "value", j.type)) not in OPENING_KINDS:
+            movable = sorted(n for n, x in scene_joints.items() if str(getattr(x.type, "value", x.type)) in OPENING_KINDS)
             what = "does not exist" if j is None else f"is {getattr(j.type, 'value', j.type)}"
             raise PlanFileError(f"plan {src}: field 'segments[{i}].expect.joint': scene joint {e.joint!r} of {scene} "
                                 f"{what} (movable joints: {', '.join(movable[:12]) or 'none'})")
@@ -105,7 +102,7 @@ def bind_plan(given: GivenPlan, robot, scene_joints: dict, scene) -> list[PlanRe
             else:
                 obj = np.full(len(s.t), value if k > i else e.start)
             segs.append(dataclasses.replace(s, object_q=obj))
-        kind = _KIND_OF[str(getattr(scene_joints[e.joint].type, "value", scene_joints[e.joint].type))]
+        kind = OPENING_KINDS[str(getattr(scene_joints[e.joint].type, "value", scene_joints[e.joint].type))]
         task = OpenTask(kind, e.joint, e.amount)
         plans.append(PlanResult(PlanStatus.OK, f"given plan {src}, segment {given.segments[i].name!r}", task,
                                 robot_names, tuple(segs), amount=e.amount, start_object_q=e.start, method="given"))
