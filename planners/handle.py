@@ -5,7 +5,10 @@ Where the handle is looked for, in order:
 1. ``OpenTask.grasp_link`` / ``OpenTask.grasp_point`` when given;
 2. a link fixed (directly or through fixed joints) below the moving link whose name contains "handle";
 3. the only link fixed below the moving link;
-4. collision geometry of the moving link whose ``name`` attribute contains "handle".
+4. collision geometry of the moving link whose ``name`` attribute contains "handle";
+5. geometry of the moving link (or links fixed below it) that stands out of its front: beyond the outer
+   face of its largest geometry (the panel), along the way the part opens, and small beside it (a knob,
+   a handle exported as unnamed mesh geometry of the door).
 
 No handle raises :class:`planners.errors.HandleNotFoundError` naming the file and the joint.
 
@@ -39,6 +42,10 @@ __all__ = ["HandleGrasp", "find_handle", "handle_link", "outward_direction"]
 
 log = logging.getLogger(__name__)
 
+PROTRUDING_SHARE = 0.5
+"""An unnamed geometry counts as a handle only if the area it shows along the outward direction is under this
+share of the panel's (a handle or knob, not a second panel)."""
+
 
 @dataclass(frozen=True)
 class HandleGrasp:
@@ -52,7 +59,7 @@ class HandleGrasp:
     T_link_grasps : tuple of (4, 4) candidate grasp frames in the moving link's frame.
     bar_width : float, metres, extent of the bar across the finger closing direction (0 if unknown).
     source : how the handle was found ("grasp_link", "grasp_point", "handle link", "fixed child",
-        "named geometry").
+        "named geometry", "protruding geometry").
     """
 
     moving_link: str
@@ -168,6 +175,57 @@ def _extent(geom: Shape) -> float:
     return float(max(geom.size)) if geom.kind is ShapeKind.BOX else 1.0
 
 
+def _protruding(scene, joint, cands, T_world_moving, values, direction) -> list:
+    """The candidate geometries that stand out of the front: their centre lies beyond the outer face of the
+    panel (the geometry showing the largest area along the part's outward direction), and they are small beside it (the area
+    they show along that direction under ``PROTRUDING_SHARE`` of the panel's). A knob (stem and cap), a handle given as
+    unnamed mesh geometry of the moving link. Empty when nothing stands out (a front without a handle)."""
+    if len(cands) < 2:
+        return []
+    sizes = [_box_extent(c[1]) for c in cands]
+    centre = np.mean([(T_world_moving @ c[2])[:3, 3] for c in cands], axis=0)
+    v = direction * outward_direction(scene, joint, centre, values)
+    if np.linalg.norm(v) < 1e-9:
+        return []
+    n_link = T_world_moving[:3, :3].T @ (v / np.linalg.norm(v))      # outward, moving-link frame
+
+    def facing_area(c, e):        # area the geometry shows along the outward direction, m^2
+        m = np.abs(c[2][:3, :3].T @ n_link)
+        return float(e[0] * e[1] * m[2] + e[1] * e[2] * m[0] + e[0] * e[2] * m[1])
+
+    k = int(np.argmax([facing_area(c, e) for c, e in zip(cands, sizes)]))
+    panel, panel_size = cands[k], sizes[k]
+    R = panel[2][:3, :3]
+    face = int(np.argmax(np.abs(R.T @ n_link)))          # the panel's face the outward direction is nearest
+    n_link = R[:, face] * np.sign(R[:, face] @ n_link)
+    outer = float(panel[2][:3, 3] @ n_link + 0.5 * np.abs(R.T @ n_link) @ panel_size)
+    out = []
+    for c, size in zip(cands, sizes):
+        if c is panel:
+            continue
+        p = (c[2] @ np.append(_bar(c[1])[1], 1.0))[:3]
+        if p @ n_link > outer - 1e-4 and facing_area(c, size) < PROTRUDING_SHARE * facing_area(panel, panel_size):
+            out.append(c)
+    return out
+
+
+def _box_extent(geom: Shape) -> np.ndarray:
+    """(3,) extents (m) of a geometry in its own frame: box size, cylinder (2r, 2r, length), sphere (2r)^3,
+    a mesh's bounding box (unreadable: zeros)."""
+    if geom.kind is ShapeKind.BOX:
+        return np.asarray(geom.size, dtype=float)
+    if geom.kind is ShapeKind.CYLINDER:
+        return np.array([2 * geom.radius, 2 * geom.radius, geom.length])
+    if geom.kind is ShapeKind.SPHERE:
+        return np.full(3, 2 * geom.radius)
+    try:
+        import trimesh
+        lo, hi = trimesh.load(geom.mesh, force="mesh").bounds * np.asarray(geom.size)
+    except Exception:
+        return np.zeros(3)
+    return hi - lo
+
+
 def _name(cand) -> str:
     """Lower-case name of a candidate ``(link, geometry, T_moving_geom, index)`` (``link_index`` if unnamed)."""
     return (cand[1].name or f"{cand[0]}_{cand[3]}").lower()
@@ -203,8 +261,12 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
         if link != moving:
             cands, source = geoms_of(link), "handle link" if "handle" in link.lower() else "fixed child"
         else:
-            cands = [c for ln in [moving] + fixed_below for c in geoms_of(ln) if "handle" in _name(c)]
+            every = [c for ln in [moving] + fixed_below for c in geoms_of(ln)]
+            cands = [c for c in every if "handle" in _name(c)]
             source = "named geometry"
+            if not cands and task.grasp_point is None:
+                cands = _protruding(scene, task.joint, every, T_world_moving, values, direction)
+                source = "protruding geometry"
     cands = [c for c in cands if c[1] is not None]
     if task.grasp_point is not None:
         p_world = np.asarray(task.grasp_point, dtype=float)
@@ -228,8 +290,8 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
         if not cands:
             raise HandleNotFoundError(
                 f"{where}: no handle found on moving link {moving!r} (no fixed child link named '*handle*', "
-                f"no single fixed child, no collision geometry named '*handle*'); give OpenTask.grasp_point "
-                f"or grasp_link")
+                f"no single fixed child, no collision geometry named '*handle*', no "
+                f"geometry standing out of its front); give OpenTask.grasp_point or grasp_link")
         best = _outermost(scene, task.joint, cands, T_world_moving, values, direction)
         grasp_link, depth_geom = best[0], best
         a, centre, width = _bar(best[1])

@@ -42,10 +42,10 @@ class OpenTask:
     amount : float or None
         Target opening (metres / radians, non-zero, counted from the joint's current value; negative
         opens toward the lower limit, for joints whose files open toward negative values). ``None``:
-        drawers 90% of the joint's range, doors ``min(90% of range, 90 deg)``
+        drawers 90% of the joint's range, doors ``min(90% of range, 85 deg)``
         (:class:`planners.PlannerConfig`), toward the limit farther from the current value (a joint
         closed at 0 with limits ``[-1.57, 0]`` opens toward -1.57); a ``continuous`` joint opens by
-        ``+door_max`` (90 deg).
+        ``+door_max`` (85 deg).
     grasp_point : (3,) float or None
         Explicit grasp point (world frame, metres, joint closed) on the moving part.
     grasp_link : str or None
@@ -191,7 +191,7 @@ def check_task(task: OpenTask, joints: Mapping[str, _JointLike], source: object)
         raise TaskJointError(f"{where} is fixed: nothing to open as a {task.kind}")
     if jtype != need and not (need == "revolute" and jtype == "continuous"):
         raise TaskJointError(f"{where} is {jtype}, but a {task.kind} needs a {need} joint")
-    if not j.upper > j.lower:
+    if jtype != "continuous" and not j.upper > j.lower:
         raise TaskJointError(f"{where} has no opening range (lower {j.lower}, upper {j.upper})")
     return j
 
@@ -218,7 +218,7 @@ def movable_joint_tasks(joints: Mapping[str, _JointLike], source: object) -> tup
         jtype = str(getattr(j.type, "value", j.type))
         if jtype not in OPENING_KINDS:
             continue
-        if not j.upper > j.lower:
+        if jtype != "continuous" and not j.upper > j.lower:
             skipped[name] = f"{source}: {jtype} joint has no opening range (lower {j.lower}, upper {j.upper})"
             continue
         tasks.append(OpenTask(OPENING_KINDS[jtype], name))

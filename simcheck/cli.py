@@ -57,7 +57,7 @@ def _parser() -> argparse.ArgumentParser:
                    help="certify every drawer (prismatic joint) and door (revolute joint) of the scene; "
                         "joints without an opening range are listed as untested")
     c.add_argument("--amount", action="append", type=float, default=[],
-                   help="opening, m or rad: one for all tasks or one per task (default: 90%% of the range, doors <= 90 deg)")
+                   help="opening, m or rad: one for all tasks or one per task (default: 90%% of the range, doors <= 85 deg)")
     c.add_argument("--against", default=None, help="reference URDF to execute on (joints matched by name)")
     c.add_argument("--robot", default="default", help="'default' or a robot spec YAML/JSON file")
     c.add_argument("--save-plan", action="store_true",

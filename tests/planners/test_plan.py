@@ -56,7 +56,7 @@ def test_drawer_plan_meets_the_contract_and_pulls_straight(drawer_plan, robot):
 
 
 def test_door_plan_meets_the_contract_and_follows_the_hinge_arc(door_plan, robot):
-    _check_contract(door_plan, robot, np.pi / 2)   # min(0.9 * 1.9 rad, 90 deg)
+    _check_contract(door_plan, robot, np.radians(85))   # min(0.9 * 1.9 rad, 85 deg)
     op = door_plan.segment("open")
     hinge = np.array([1.25, 0.38])
     r = np.linalg.norm(op.T_world_tool[:, :2, 3] - hinge, axis=1)
@@ -123,7 +123,9 @@ def test_given_start_is_the_first_approach_sample(robot, fixture_urdf):
 def test_default_amounts():
     assert default_amount("drawer", 0.0, 0.4, CFG) == pytest.approx(0.36)
     assert default_amount("door", 0.0, 1.0, CFG) == pytest.approx(0.9)
-    assert default_amount("door", 0.0, 2.5, CFG) == pytest.approx(np.pi / 2)
+    assert default_amount("door", 0.0, 2.5, CFG) == pytest.approx(np.radians(85))
+    # an estimate a little wider than a reference that stops at 90 deg does not request exactly 90 deg
+    assert default_amount("door", 0.0, 1.75, CFG) < np.pi / 2 - np.radians(4)
 
 
 @pytest.mark.parametrize("kind, joint, handle", [("drawer", DRAWER, "cabinet1_handle13"),

@@ -34,10 +34,10 @@ def test_a_joint_with_a_negative_range_opens_toward_its_lower_limit(fixture_urdf
         _validate(scene, OpenTask("drawer", DRAWER, amount=0.1), 0.0, CFG)
 
 
-def test_our_positive_convention_is_kept_and_a_continuous_joint_opens_90_deg(fixture_urdf, tmp_path):
+def test_our_positive_convention_is_kept_and_a_continuous_joint_opens_85_deg(fixture_urdf, tmp_path):
     scene = _scene(fixture_urdf, tmp_path, (0.0, 1.9), (0.0, 0.35))
     assert _validate(scene, OpenTask("door", DOOR), 0.0, CFG) == pytest.approx(CFG.door_max)
     assert _validate(scene, OpenTask("drawer", DRAWER), 0.0, CFG) == pytest.approx(0.9 * 0.35)
     scene = _scene(fixture_urdf, tmp_path, (0.0, 1.9), (0.0, 0.35), door_type="continuous")
     assert _validate(scene, OpenTask("door", DOOR), 0.3, CFG) == pytest.approx(CFG.door_max)
-    assert CFG.door_max == pytest.approx(math.pi / 2)
+    assert CFG.door_max == pytest.approx(math.radians(85))

@@ -65,7 +65,7 @@ def test_check_task_against_the_scene_joints():
         0.9 * (j.upper - j.lower))
     d = check_task(OpenTask("door", DOOR), scene.joints, FIXTURE)
     assert default_amount("door", d.lower, d.upper, PlannerConfig()) == pytest.approx(min(0.9 * (d.upper - d.lower),
-                                                                                       math.pi / 2))
+                                                                                       math.radians(85)))
     for task, message in [(OpenTask("drawer", "nope"), "joint 'nope' does not exist"),
                           (OpenTask("door", DRAWER), "is prismatic, but a door needs a revolute joint")]:
         with pytest.raises(TaskJointError, match=message) as e:

@@ -20,13 +20,13 @@ def _estimate_and_reference(case, tmp_path):
         return CAB, wrong.revolute_as_prismatic(CAB, DOOR, tmp_path / "prismatic_ref.urdf")
     if case == "range":           # the reference's door opens half as far as the estimate's
         return CAB, wrong.widen_limits(CAB, DOOR, 0.5, tmp_path / "short_ref.urdf")
-    return wrong.shift_hinge(CAB, DOOR, tmp_path / "shifted.urdf", sideways=0.03), CAB
+    return wrong.shift_hinge(CAB, DOOR, tmp_path / "shifted.urdf", sideways=0.04), CAB
 
 
 @pytest.mark.parametrize("case, named", [
     ("type", f"joint {DOOR} is revolute in the estimate but prismatic in the reference"),
     ("range", f"the estimated upper limit of {DOOR} (1.900 rad) exceeds the reference's (0.950 rad)"),
-    ("hinge", f"the estimated hinge of {DOOR} is 0.030 m from the reference hinge"),
+    ("hinge", f"the estimated hinge of {DOOR} is 0.040 m from the reference hinge"),
 ])
 def test_a_wrong_estimate_against_its_reference_fails_with_exit_1_naming_the_difference(case, named, tmp_path):
     est, ref = _estimate_and_reference(case, tmp_path)

@@ -1,0 +1,118 @@
+"""Benchmark on the third-party corpus: ``python -m bench.thirdparty_bench [--only NAME ...] [--no-wrong]``.
+
+Builds every object of :data:`thirdparty.CATALOGUE` (URDFs in other people's conventions), certifies each
+drawer and door on its own URDF (target: >= 95 % certified; every other one is listed with its reason),
+then plans each front's wrong estimates (``thirdparty.wrong``: 30 deg axis; for doors also door-as-drawer
+and the hinge on the wrong side) and executes them ``--against`` the object's own URDF (target: none
+certified). Prints per-category tables, every non-certified truth task with its reason, and YES/NO
+target lines. Exit 0 when both targets are met, 1 otherwise.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import sys
+import tempfile
+import time
+from collections import Counter, defaultdict
+from pathlib import Path
+
+__all__ = ["main"]
+
+TRUTH_TARGET = 0.95
+
+
+def _certify_one(urdf: Path, task: str, against: Path | None):
+    """(status name, reason, seconds) of one task; unusable input / errors come back as their class name."""
+    from simcheck.certification import certify
+    t0 = time.perf_counter()
+    try:
+        cert = certify(urdf, [task], against=against, images=False)
+        t = cert.tasks[0]
+        return str(t.status.value if hasattr(t.status, "value") else t.status), t.reason, time.perf_counter() - t0
+    except Exception as exc:          # unusable input is a result of this benchmark, not a crash
+        return f"unusable:{type(exc).__name__}", str(exc), time.perf_counter() - t0
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m bench.thirdparty_bench", description=__doc__.splitlines()[0])
+    ap.add_argument("--only", nargs="*", help="catalogue object names (default: all)")
+    ap.add_argument("--no-wrong", action="store_true", help="skip the wrong estimates")
+    ap.add_argument("--out", help="folder for the built corpus (default: a temporary folder)")
+    args = ap.parse_args(argv)
+    logging.basicConfig(level=logging.ERROR)
+    import thirdparty
+    from thirdparty.wrong import WRONG_KINDS, wrong_estimate
+
+    with tempfile.TemporaryDirectory(prefix="thirdparty_bench_") as tmp:
+        root = Path(args.out or tmp)
+        objs = thirdparty.build_corpus(root / "corpus", args.only or None)
+        n_fronts = sum(len(o.fronts) for o in objs)
+        print(f"corpus: {len(objs)} objects, {n_fronts} drawers and doors", flush=True)
+        truth = []          # (category, object, front, status, reason, seconds)
+        for o in objs:
+            for f in o.fronts:
+                status, reason, dt = _certify_one(o.urdf, f.task, None)
+                truth.append((o.spec.category, o.spec.name, f, status, reason, dt))
+                print(f"  truth {o.spec.name:28s} {f.task:40s} {status:12s} {dt:5.1f} s", flush=True)
+        wrong = []          # (kind, object, front, status, reason)
+        if not args.no_wrong:
+            for o in objs:
+                for f in o.fronts:
+                    kinds = ("axis30",) if f.kind == "drawer" else WRONG_KINDS
+                    for kind in kinds:
+                        est = wrong_estimate(o.urdf, f.joint, kind, root / "wrong" / f"{o.spec.name}_{f.joint}_{kind}.urdf")
+                        status, reason, dt = _certify_one(est, _task_for(f, kind), o.urdf)
+                        wrong.append((kind, o.spec.name, f, status, reason))
+                        print(f"  wrong {kind:16s} {o.spec.name:28s} {f.joint:24s} {status:12s} {dt:5.1f} s", flush=True)
+    return _report(truth, wrong, len(objs), n_fronts, args.no_wrong)
+
+
+def _task_for(front, kind: str) -> str:
+    return f"open-drawer:{front.joint}" if kind == "door_as_drawer" else front.task
+
+
+def _report(truth, wrong, n_objects: int, n_fronts: int, skipped_wrong: bool) -> int:
+    by_cat = defaultdict(Counter)
+    by_kind = defaultdict(Counter)
+    for cat, _, f, status, _, _ in truth:
+        by_cat[cat][status == "certified"] += 1
+        by_kind[f"{f.kind} handle={f.handle} sign={f.sign:+d}"][status == "certified"] += 1
+    print("\n## Certified on their own URDF, by category")
+    print(f"{'category':16s} {'certified':>9s} {'of':>4s}")
+    for cat, c in sorted(by_cat.items()):
+        print(f"{cat:16s} {c[True]:9d} {c[True] + c[False]:4d}")
+    print("\n## By front kind, handle and sign")
+    for k, c in sorted(by_kind.items()):
+        print(f"{k:40s} {c[True]:3d} / {c[True] + c[False]:3d}")
+    failed = [(o, f, s, r) for _, o, f, s, r, _ in truth if s != "certified"]
+    print(f"\n## Not certified on their own URDF ({len(failed)})")
+    for o, f, s, r in failed:
+        print(f"- {o} {f.task} [{s}]: {r[:400]}")
+    n_ok = sum(s == "certified" for *_, s, _r, _t in truth)
+    share = n_ok / max(1, len(truth))
+    print(f"\nseconds per truth task: median {sorted(t[5] for t in truth)[len(truth) // 2]:.1f}")
+    met = share >= TRUTH_TARGET
+    big = n_objects >= 20 and n_fronts >= 40
+    print(f"\n{'YES' if big else 'NO '} corpus >= 20 objects and >= 40 drawers/doors: {n_objects} objects, {n_fronts}")
+    print(f"{'YES' if met else 'NO '} certified on their own URDF >= {TRUTH_TARGET:.0%}: {n_ok}/{len(truth)} "
+          f"({share:.1%})")
+    if skipped_wrong:
+        return 0 if met else 1
+    wk = defaultdict(Counter)
+    for kind, _, _, status, _ in wrong:
+        wk[kind][status] += 1
+    print("\n## Wrong estimates executed --against their own URDF (outcomes)")
+    for kind, c in sorted(wk.items()):
+        print(f"{kind:18s} " + ", ".join(f"{s} {n}" for s, n in sorted(c.items())))
+    bad = [(k, o, f.joint, r) for k, o, f, s, r in wrong if s == "certified"]
+    for k, o, j, r in bad:
+        print(f"- CERTIFIED WRONG {k} {o} {j}: {r[:300]}")
+    none_ok = not bad
+    print(f"{'YES' if none_ok else 'NO '} wrong estimates never certified: {len(bad)} of {len(wrong)} certified")
+    return 0 if met and none_ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

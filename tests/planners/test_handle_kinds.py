@@ -1,0 +1,51 @@
+"""Handles of every kind on third-party fronts (planners.handle): an own link, unnamed mesh geometry of the
+moving link, a knob (stem and cap), none. Pure: no simulator."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import thirdparty
+from planners import HandleNotFoundError, OpenTask, PlannerConfig
+from planners.handle import find_handle
+from planners.scene_urdf import read_scene_urdf
+
+CFG = PlannerConfig()
+
+
+@pytest.mark.parametrize("obj, k, source, shape", [
+    ("base_cabinet_door_drawer", 0, "handle link", "cylinder"),
+    ("kitchen_unit_double_door", 0, "protruding geometry", "mesh"),
+    ("kitchen_unit_double_door", 1, "protruding geometry", "mesh"),     # opens toward negative values
+    ("drawer_stack_knobs", 1, "protruding geometry", "sphere"),         # the knob's cap, not its stem
+    ("nightstand", 0, "fixed child", "sphere"),
+    ("safe_box", 0, "protruding geometry", "sphere"),                   # a 5 cm thick door
+])
+def test_the_handle_is_found_whatever_its_kind(obj, k, source, shape, tmp_path):
+    o = thirdparty.build_object(thirdparty.spec_named(obj), tmp_path)
+    f = o.fronts[k]
+    s = read_scene_urdf(o.urdf)
+    j = s.joints[f.joint]
+    direction = 1.0 if j.upper >= -j.lower else -1.0
+    h = find_handle(s, OpenTask("drawer" if f.kind == "drawer" else "door", f.joint), {}, CFG, direction)
+    assert h.source == source
+    geoms = {(ln, i): s.links[ln].collisions[i] for ln, i in h.handle_geoms}
+    assert shape in {g.kind.value for g in geoms.values()}
+    # the preferred grasp is at the centre of the outermost handle shape (a knob's cap, not its stem), and
+    # approaches into the front (which faces the world's -y turned by the placement yaw)
+    T = s.T_world_link(h.moving_link, {}) @ h.T_link_grasps[0]
+    yaw = np.deg2rad(o.spec.place[2])
+    out = np.array([np.sin(yaw), -np.cos(yaw), 0.0])
+    assert T[:3, 2] @ out < -0.8
+    if shape == "sphere":
+        (ln, i), = [key for key, g in geoms.items() if g.kind.value == "sphere"]
+        centre = (s.T_world_link(ln, {}) @ s.links[ln].collisions[i].T_link_shape)[:3, 3]
+        assert np.linalg.norm(T[:3, 3] - centre) < 1e-6
+
+
+def test_a_front_without_a_handle_is_refused_naming_what_was_looked_for(tmp_path):
+    o = thirdparty.build_object(thirdparty.spec_named("sink_base_no_handles"), tmp_path)
+    s = read_scene_urdf(o.urdf)
+    with pytest.raises(HandleNotFoundError, match="no geometry standing out of its front"):
+        find_handle(s, OpenTask("door", o.fronts[0].joint), {}, CFG)

@@ -1,0 +1,38 @@
+"""A corpus object as a scenes Scene: labelled parts the scanner sees, and joints in the scenes convention
+that move each part as the object's own URDF does."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import thirdparty
+from scenes.description import read_urdf
+from scenes.scanner import scan_scene
+from scenes.scanner.params import params_for_preset
+from thirdparty.scannable import scene_of
+
+
+@pytest.mark.parametrize("name", ["kitchen_unit_double_door", "dresser_six", "wall_flap", "microwave_continuous"])
+def test_each_part_moves_as_in_the_urdf_with_positive_opening(name, tmp_path):
+    o = thirdparty.build_object(thirdparty.spec_named(name), tmp_path)
+    scene, joint_part = scene_of(o)
+    obj, m = scene.objects[0], read_urdf(o.urdf)
+    for f in o.fronts:
+        j = m.joints[f.joint]
+        sign = 1.0 if j.upper >= -j.lower else -1.0
+        value = 0.2 if f.kind == "drawer" else 0.7
+        T_scene = obj.T_object_part_at(joint_part[f.joint], {joint_part[f.joint]: value})
+        T_urdf = m.T_world_link(f.moving_link, {f.joint: sign * value})
+        assert np.allclose(T_scene, T_urdf, atol=1e-9)
+        assert obj.joint_of(joint_part[f.joint]).upper > 0
+
+
+def test_a_scan_labels_the_body_every_front_and_every_handle(tmp_path):
+    o = thirdparty.build_object(thirdparty.spec_named("nightstand"), tmp_path)
+    scene, _ = scene_of(o)
+    scan = scan_scene(scene, params_for_preset("clean"), seed=0)
+    labels = {p["id"]: p["label"] for p in scan.labels["objects"][0]["parts"]}
+    assert sorted(labels.values()) == ["body", "door", "drawer", "handle", "handle"]
+    seen = scan.counts_by_part()
+    assert all(seen.get(pid, 0) > 20 for pid in labels), (seen, labels)

@@ -1,0 +1,78 @@
+"""A corpus object as a :class:`scenes.model.Scene`, so the virtual scanner (:mod:`scenes.scanner`) can scan
+it with part labels (``scan_scene(scene_of(built), params)``) and ``recon`` can rebuild it.
+
+Parts: the carcass ("body"), each front ("drawer" / "door") and each handle ("handle": a handle link, or
+the handle geometry of a front split off as its own part, fixed to the front). Shapes are the URDF's
+collision shapes; a mesh is replaced by its bounding box (the scanner ray-casts primitives). Joints are
+re-expressed in the scenes convention (axis and a point on it in the object frame, closed = 0, positive
+opens): a file's negative range becomes a positive one about the reversed axis; a continuous hinge gets
+``[0, pi]``. The object frame is the URDF's root frame, placed at the world origin.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from scenes.description import JointType, Shape, ShapeKind, read_urdf
+from scenes.model import ArticulatedObject, Joint, Part, Scene
+from thirdparty.build import BuiltObject
+
+__all__ = ["scene_of", "SCANNED_CATEGORY"]
+
+#: corpus categories as the scanner's labels.json names them (recon understands these)
+SCANNED_CATEGORY = {"cabinet": "cabinet", "wall_cabinet": "cabinet", "microwave": "microwave",
+                    "refrigerator": "refrigerator", "dishwasher": "cabinet", "oven": "cabinet"}
+
+DENSITY = 500.0   # kg/m^3, for the scene's inertials only
+
+
+def _scannable(shape: Shape) -> Shape:
+    if shape.kind is not ShapeKind.MESH:
+        return shape
+    import trimesh
+    lo, hi = trimesh.load(shape.mesh, force="mesh").bounds * np.asarray(shape.size)
+    T = shape.T_link_shape.copy()
+    T[:3, 3] = T[:3, :3] @ ((lo + hi) / 2) + T[:3, 3]
+    return Shape(ShapeKind.BOX, hi - lo, T, shape.name)
+
+
+def scene_of(built: BuiltObject, object_id: int = 1, name: str | None = None) -> tuple[Scene, dict]:
+    """(the Scene holding the object, {URDF joint name: child part id}) for ``built``."""
+    m = read_urdf(built.urdf)
+    parts, joints, joint_part = [], [], {}
+    pid = [10 * object_id]
+
+    def part(label, link, shapes, T=None):
+        pid[0] += 1
+        T = m.T_world_link(link) if T is None else T
+        parts.append(Part(pid[0], label, T, tuple(_scannable(s) for s in shapes), DENSITY))
+        return pid[0]
+
+    body_link = next(link for link, lab in built.labels.items() if lab == "body")
+    body = part("body", body_link, m.links[body_link].collisions)
+    joints.append(Joint(JointType.FIXED, None, body))
+    for f in built.fronts:
+        j = m.joints[f.joint]
+        cols = m.links[f.moving_link].collisions
+        own = [c for k, c in enumerate(cols) if k not in f.handle_geoms]
+        front = part("drawer" if f.kind == "drawer" else "door", f.moving_link, own)
+        T_w_joint = m.T_world_link(f.moving_link)
+        sign = 1.0 if j.upper >= -j.lower else -1.0
+        span = np.pi if not np.isfinite(j.upper - j.lower) else max(j.upper, -j.lower)
+        typ = JointType.PRISMATIC if j.type is JointType.PRISMATIC else JointType.REVOLUTE
+        handle = None
+        if f.handle_geoms:
+            handle = part("handle", f.moving_link, [cols[k] for k in f.handle_geoms])
+        for link, lab in f.labels.items():
+            if lab == "handle":
+                handle = part("handle", link, m.links[link].collisions)
+        joints.append(Joint(typ, body, front, sign * (T_w_joint[:3, :3] @ j.axis), T_w_joint[:3, 3].copy(),
+                            0.0, float(span), handle=handle, damping=j.dynamics.damping if j.dynamics else 0.0))
+        if handle is not None:
+            joints.append(Joint(JointType.FIXED, front, handle))
+        joint_part[f.joint] = front
+    obj = ArticulatedObject(object_id, SCANNED_CATEGORY.get(built.spec.category, "cabinet"), tuple(parts),
+                            tuple(joints), ())
+    return Scene(name or built.spec.name, 0, (obj,), (), np.array([6.0, 6.0])), joint_part
