@@ -39,7 +39,9 @@ class FrontSpec:
     axis flipped and range negative. ``frame``: "hinge" (joint frame at the hinge's lower/left end,
     unrotated), "rotated" (rotated joint frame at the hinge's upper/right end), "centre" (a drawer's: at
     its panel centre, rotated). ``limit``: rad or m (0: the default for the kind). ``continuous``: a door
-    on a continuous joint."""
+    on a continuous joint. ``hinge``: the panel edge a door turns about, "back" (its back face: a door
+    touching a sibling can still swing) or "front" (its front face: the panel's back corner sweeps
+    ``sqrt(w^2 + t^2) - w`` past its free edge, into a touching sibling)."""
 
     kind: str
     cell: tuple
@@ -48,6 +50,7 @@ class FrontSpec:
     frame: str = "hinge"
     limit: float = 0.0
     continuous: bool = False
+    hinge: str = "back"
 
 
 @dataclass(frozen=True)
@@ -143,16 +146,17 @@ class _Names:
 _ODD = Rotation.from_euler("xyz", [90, 0, -90], degrees=True).as_matrix()
 
 
-def _hinge(f: FrontSpec, panel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _hinge(f: FrontSpec, panel, ft: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(lower/left end (3,), upper/right end (3,), opening axis (3,)) of a door's hinge line, object frame."""
     x0, x1, z0, z1 = panel
+    y = -ft if f.hinge == "front" else 0.0
     if f.kind == "door_left":
-        return np.array([x0, 0, z0]), np.array([x0, 0, z1]), np.array([0.0, 0, -1])
+        return np.array([x0, y, z0]), np.array([x0, y, z1]), np.array([0.0, 0, -1])
     if f.kind == "door_right":
-        return np.array([x1, 0, z0]), np.array([x1, 0, z1]), np.array([0.0, 0, 1])
+        return np.array([x1, y, z0]), np.array([x1, y, z1]), np.array([0.0, 0, 1])
     if f.kind == "door_bottom":
-        return np.array([x0, 0, z0]), np.array([x1, 0, z0]), np.array([1.0, 0, 0])
-    return np.array([x0, 0, z1]), np.array([x1, 0, z1]), np.array([-1.0, 0, 0])
+        return np.array([x0, y, z0]), np.array([x1, y, z0]), np.array([1.0, 0, 0])
+    return np.array([x0, y, z1]), np.array([x1, y, z1]), np.array([-1.0, 0, 0])
 
 
 def _handle_geoms(f: FrontSpec, panel, ft: float, mesh_name: str | None) -> list[Geom]:
@@ -235,7 +239,7 @@ def build_object(spec: ObjectSpec, folder: str | Path) -> BuiltObject:
             else:
                 T_obj_joint = _T((x0, 0.0, z0))
         else:
-            lo_end, hi_end, a = _hinge(f, panel)
+            lo_end, hi_end, a = _hinge(f, panel, ft)
             rng = f.limit or (np.pi / 2 if f.kind in ("door_bottom", "door_top") else 1.9)
             if f.frame == "rotated":
                 T_obj_joint = _T(hi_end, _ODD)
