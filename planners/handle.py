@@ -51,15 +51,14 @@ share of the panel's (a handle or knob, not a second panel)."""
 class HandleGrasp:
     """Where and how to grasp the part moved by a joint.
 
-    Attributes
-    ----------
-    moving_link : link moved by the joint.
-    grasp_link : link that carries the grasped bar (the handle link, or the moving link itself).
-    handle_geoms : frozenset of (link, collision index) the gripper may touch.
-    T_link_grasps : tuple of (4, 4) candidate grasp frames in the moving link's frame.
-    bar_width : float, metres, extent of the bar across the finger closing direction (0 if unknown).
-    source : how the handle was found ("grasp_link", "grasp_point", "handle link", "fixed child",
-        "named geometry", "protruding geometry").
+    Attributes:
+        moving_link: link moved by the joint.
+        grasp_link: link that carries the grasped bar (the handle link, or the moving link itself).
+        handle_geoms: frozenset of (link, collision index) the gripper may touch.
+        T_link_grasps: tuple of (4, 4) candidate grasp frames in the moving link's frame.
+        bar_width: float, metres, extent of the bar across the finger closing direction (0 if unknown).
+        source: how the handle was found ("grasp_link", "grasp_point", "handle link", "fixed child",
+            "named geometry", "protruding geometry").
     """
 
     moving_link: str

@@ -62,17 +62,14 @@ def solve_ik(pose_jacobian, T_target: np.ndarray, q_seed: np.ndarray, lower: np.
              accept=None) -> IKResult:
     """Move the tool to ``T_target (4, 4)`` starting from ``q_seed (dof,)``.
 
-    Parameters
-    ----------
-    active : (dof,) bool
-        Columns that may move (default all); inactive joints keep their seed value.
-    weights : (dof,) float
-        Per-joint motion weights (larger moves more; e.g. small on the base to prefer arm motion).
-    restarts : int
-        Extra attempts from seeds drawn uniformly within the limits (active columns only; with
-        ``restart_span`` (dof,) the draw is ``q_seed +- span`` clipped to the limits instead).
-    accept : callable ``q -> bool`` or None
-        Extra test a converged solution must pass (e.g. collision-free); otherwise the next restart runs.
+    Args:
+        active ((dof,) bool): Columns that may move (default all); inactive joints keep their seed value.
+        weights ((dof,) float): Per-joint motion weights (larger moves more; e.g. small on the base to prefer arm
+            motion).
+        restarts (int): Extra attempts from seeds drawn uniformly within the limits (active columns only; with
+            ``restart_span`` (dof,) the draw is ``q_seed +- span`` clipped to the limits instead).
+        accept (callable ``q -> bool`` or None): Extra test a converged solution must pass (e.g. collision-free);
+            otherwise the next restart runs.
     """
     dof = len(q_seed)
     act = np.ones(dof, bool) if active is None else np.asarray(active, bool)

@@ -148,15 +148,14 @@ class PlanningWorld:
     the scene geometry and the floor; pinocchio's broad-phase manager (coal dynamic AABB tree) answers a
     check in C++. Gripper-handle pairs are switched off while ``allow_grasp_contact`` is true.
 
-    Parameters
-    ----------
-    robot : the robot's kinematics (shared across tasks).
-    scene : parsed scene URDF.
-    task_joint : URDF name of the joint whose value ``s`` each check takes.
-    handle_geoms : ``{(link, collision_index)}`` scene geometries the gripper may touch when allowed.
-    scene_state : values of other scene joints (default 0).
-    clearance : metres; robot links other than the gripper must stay this far from the scene and the floor
-        (coal security margin), so small tracking errors in execution do not touch the scene.
+    Args:
+        robot: the robot's kinematics (shared across tasks).
+        scene: parsed scene URDF.
+        task_joint: URDF name of the joint whose value ``s`` each check takes.
+        handle_geoms: ``{(link, collision_index)}`` scene geometries the gripper may touch when allowed.
+        scene_state: values of other scene joints (default 0).
+        clearance: metres; robot links other than the gripper must stay this far from the scene and the floor
+            (coal security margin), so small tracking errors in execution do not touch the scene.
     """
 
     PREFIX = "scene::"

@@ -82,21 +82,19 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
                    scene_state: dict | None = None, config: PlannerConfig | None = None) -> PlanResult:
     """Plan opening ``task.joint`` of the scene in ``scene_urdf`` with ``robot``.
 
-    Parameters
-    ----------
-    robot : the robot description.
-    scene_urdf : path of the scene URDF (the estimate to plan on).
-    task : what to open; ``amount`` is counted from the joint's current value.
-    seed : every random choice (stand sampling, IK restarts, OMPL) derives from it.
-    start : (dof,) robot configuration in ``robot.joint_names`` order, or None: the robot starts
-        ``config.start_backoff`` behind the chosen stand pose with the arm at home.
-    scene_state : {joint name: value} of the scene's joints when the plan starts (default all 0).
-    config : planner parameters.
+    Args:
+        robot: the robot description.
+        scene_urdf: path of the scene URDF (the estimate to plan on).
+        task: what to open; ``amount`` is counted from the joint's current value.
+        seed: every random choice (stand sampling, IK restarts, OMPL) derives from it.
+        start: (dof,) robot configuration in ``robot.joint_names`` order, or None: the robot starts
+            ``config.start_backoff`` behind the chosen stand pose with the arm at home.
+        scene_state: {joint name: value} of the scene's joints when the plan starts (default all 0).
+        config: planner parameters.
 
-    Raises
-    ------
-    planners.errors.PlannerInputError (SceneURDFError, TaskJointError, HandleNotFoundError) for input that
-    cannot be planned on. Every other outcome is a PlanResult.
+    Raises:
+        planners.errors.PlannerInputError (SceneURDFError, TaskJointError, HandleNotFoundError) for input that
+        cannot be planned on. Every other outcome is a PlanResult.
     """
     cfg = config or PlannerConfig()
     t_all = time.perf_counter()

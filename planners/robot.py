@@ -79,36 +79,25 @@ class GripperModel:
 class RobotSpec:
     """What the planners need to know about a robot besides its URDF.
 
-    Attributes
-    ----------
-    urdf : Path
-        The robot URDF. Its root link is the world; the base joints move the base in the plane.
-    base_joints : tuple of str
-        Planar base joints in the order (x, y, yaw): prismatic x, prismatic y (metres), revolute yaw (rad).
-    arm_joints : tuple of str
-        Arm joints, base to tip.
-    finger_joints : tuple of str
-        Gripper finger joints (prismatic, metres per finger; 0 = closed).
-    tool_frame : str
-        A frame between the fingertips; planned grasp poses are poses of this frame. Its z axis is the
-        approach direction, its y axis the finger closing direction.
-    base_link : str
-        The body link of the base (the stand pose is the pose of this link).
-    gripper_links : tuple of str
-        Links allowed to touch the handle while grasping and opening.
-    home : tuple of float
-        Home configuration of ``base_joints + arm_joints`` (the order of ``joint_names``).
-    ignore_pairs : tuple of (str, str)
-        Link pairs never checked for self-collision (besides parent-child pairs, always skipped).
-    finger_open, finger_closed : float
-        Finger joint value (metres, per finger) with the gripper open / closed.
-    max_finger_force : float
-        Newtons per finger that an executor may apply to close the gripper.
-    gripper : GripperModel
-        What the gripper can hold (grip force, pad friction): bounds the force an executed grasp transmits.
-    max_acceleration : tuple of float
-        Acceleration limit of each joint of ``joint_names``, m/s^2 or rad/s^2 (URDF has none); empty: not
-        given (a given plan's accelerations are then not judged).
+    Attributes:
+        urdf (Path): The robot URDF. Its root link is the world; the base joints move the base in the plane.
+        base_joints (tuple of str): Planar base joints in the order (x, y, yaw): prismatic x, prismatic y (metres),
+            revolute yaw (rad).
+        arm_joints (tuple of str): Arm joints, base to tip.
+        finger_joints (tuple of str): Gripper finger joints (prismatic, metres per finger; 0 = closed).
+        tool_frame (str): A frame between the fingertips; planned grasp poses are poses of this frame. Its z axis is
+            the approach direction, its y axis the finger closing direction.
+        base_link (str): The body link of the base (the stand pose is the pose of this link).
+        gripper_links (tuple of str): Links allowed to touch the handle while grasping and opening.
+        home (tuple of float): Home configuration of ``base_joints + arm_joints`` (the order of ``joint_names``).
+        ignore_pairs (tuple of (str, str)): Link pairs never checked for self-collision (besides parent-child pairs,
+            always skipped).
+        finger_open, finger_closed (float): Finger joint value (metres, per finger) with the gripper open / closed.
+        max_finger_force (float): Newtons per finger that an executor may apply to close the gripper.
+        gripper (GripperModel): What the gripper can hold (grip force, pad friction): bounds the force an executed
+            grasp transmits.
+        max_acceleration (tuple of float): Acceleration limit of each joint of ``joint_names``, m/s^2 or rad/s^2
+            (URDF has none); empty: not given (a given plan's accelerations are then not judged).
     """
 
     urdf: Path

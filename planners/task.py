@@ -33,23 +33,17 @@ OPENING_KINDS = {"prismatic": "drawer", "revolute": "door", "continuous": "door"
 class OpenTask:
     """Open the part moved by ``joint`` (its URDF name).
 
-    Attributes
-    ----------
-    kind : "drawer" | "door"
-        A drawer needs a prismatic joint, a door a revolute one.
-    joint : str
-        URDF name of the joint to open.
-    amount : float or None
-        Target opening (metres / radians, non-zero, counted from the joint's current value; negative
-        opens toward the lower limit, for joints whose files open toward negative values). ``None``:
-        drawers 90% of the joint's range, doors ``min(90% of range, 85 deg)``
-        (:class:`planners.PlannerConfig`), toward the limit farther from the current value (a joint
-        closed at 0 with limits ``[-1.57, 0]`` opens toward -1.57); a ``continuous`` joint opens by
-        ``+door_max`` (85 deg).
-    grasp_point : (3,) float or None
-        Explicit grasp point (world frame, metres, joint closed) on the moving part.
-    grasp_link : str or None
-        Explicit handle link (or the moving link itself) to grasp.
+    Attributes:
+        kind ("drawer" | "door"): A drawer needs a prismatic joint, a door a revolute one.
+        joint (str): URDF name of the joint to open.
+        amount (float or None): Target opening (metres / radians, non-zero, counted from the joint's current value;
+            negative opens toward the lower limit, for joints whose files open toward negative values). ``None``:
+            drawers 90% of the joint's range, doors ``min(90% of range, 85 deg)`` (:class:`planners.PlannerConfig`),
+            toward the limit farther from the current value (a joint closed at 0 with limits ``[-1.57, 0]`` opens
+            toward -1.57); a ``continuous`` joint opens by ``+door_max`` (85 deg).
+        grasp_point ((3,) float or None): Explicit grasp point (world frame, metres, joint closed) on the moving
+            part.
+        grasp_link (str or None): Explicit handle link (or the moving link itself) to grasp.
 
     Raises :class:`planners.errors.TaskSpecError` (an input error) naming the task when a field is invalid.
     ``str(task)`` is its command-line form, ``"open-drawer:JOINT"``.
@@ -262,26 +256,18 @@ class Expectation:
 class Segment:
     """One piece of the plan, sampled densely enough to execute by interpolation.
 
-    Attributes
-    ----------
-    name : str
-        One of :data:`SEGMENT_NAMES`.
-    q : (n, dof) float
-        Robot joint positions, columns in ``PlanResult.joint_names`` order (m, rad).
-    object_q : (n,) float
-        Planned value of the task joint at each sample (m or rad).
-    T_world_tool : (n, 4, 4) float
-        Planned tool pose; during ``open`` this is where the handle grasp frame is planned to be.
-    gripper : "open" | "closed"
-        Gripper command held during the segment.
-    t : (n,) float or None
-        Seconds from the segment's start at which each waypoint is reached (0 first, increasing): the
-        timing of a given plan, executed as it is. None: the executor times the segment itself.
-    command : "open" | "close" | "hold" or None
-        A given plan's gripper command (:data:`GRIPPER_COMMANDS`); None: a planner's segment, whose
-        gripper actions follow from its ``name`` and ``gripper``.
-    expect : Expectation or None
-        What the segment is meant to do to a scene joint (given plans).
+    Attributes:
+        name (str): One of :data:`SEGMENT_NAMES`.
+        q ((n, dof) float): Robot joint positions, columns in ``PlanResult.joint_names`` order (m, rad).
+        object_q ((n,) float): Planned value of the task joint at each sample (m or rad).
+        T_world_tool ((n, 4, 4) float): Planned tool pose; during ``open`` this is where the handle grasp frame is
+            planned to be.
+        gripper ("open" | "closed"): Gripper command held during the segment.
+        t ((n,) float or None): Seconds from the segment's start at which each waypoint is reached (0 first,
+            increasing): the timing of a given plan, executed as it is. None: the executor times the segment itself.
+        command ("open" | "close" | "hold" or None): A given plan's gripper command (:data:`GRIPPER_COMMANDS`);
+            None: a planner's segment, whose gripper actions follow from its ``name`` and ``gripper``.
+        expect (Expectation or None): What the segment is meant to do to a scene joint (given plans).
     """
 
     name: str
@@ -324,21 +310,20 @@ class Segment:
 class PlanResult:
     """A plan for an :class:`OpenTask`, or why there is none (``status`` != OK, ``segments`` empty or partial).
 
-    Attributes
-    ----------
-    status, reason : the outcome; ``reason`` names the joint and what failed.
-    task : the task planned for.
-    joint_names : robot joints, the columns of every ``Segment.q``.
-    segments : in execution order (approach, grasp, open, release, retreat) when OK.
-    T_world_base_stand : (4, 4) base pose at grasp time (identity when none was found).
-    amount : requested opening (m or rad), from ``start_object_q``.
-    start_object_q : value of the task joint when the plan starts.
-    T_link_grasp : (4, 4) grasp frame in the moving link's frame (rigid during the opening).
-    moving_link : the link moved by the task joint.
-    grasp_link : the link whose bar is grasped (the handle link, or the moving link for a named geometry or
-        an explicit grasp point); simcheck attaches the gripper to it.
-    method : how the opening was planned ("constrained" or "ik_tracking"; "" when not planned).
-    timings : seconds per stage; collision_checks : count; seed : the seed used.
+    Attributes:
+        status, reason: the outcome; ``reason`` names the joint and what failed.
+        task: the task planned for.
+        joint_names: robot joints, the columns of every ``Segment.q``.
+        segments: in execution order (approach, grasp, open, release, retreat) when OK.
+        T_world_base_stand: (4, 4) base pose at grasp time (identity when none was found).
+        amount: requested opening (m or rad), from ``start_object_q``.
+        start_object_q: value of the task joint when the plan starts.
+        T_link_grasp: (4, 4) grasp frame in the moving link's frame (rigid during the opening).
+        moving_link: the link moved by the task joint.
+        grasp_link: the link whose bar is grasped (the handle link, or the moving link for a named geometry or
+            an explicit grasp point); simcheck attaches the gripper to it.
+        method: how the opening was planned ("constrained" or "ik_tracking"; "" when not planned).
+        timings: seconds per stage; collision_checks : count; seed : the seed used.
     """
 
     status: PlanStatus
