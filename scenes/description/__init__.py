@@ -7,7 +7,8 @@
 * :class:`Shape` (box / cylinder / sphere / mesh; a cylinder's size is (2r, 2r, length)), volume, inertia;
 * :class:`SceneModel` (links, joints, limits, dynamics, inertials, visuals; ``T_world_link(link, q)``),
   read and written by :func:`read_urdf` / :func:`write_urdf`, the only URDF reader and writer;
-* ``truth.json``: :data:`TRUTH_FORMAT`, :func:`read_truth_doc`, :func:`write_truth_doc`.
+* ``truth.json``: :data:`TRUTH_FORMAT`, :func:`read_truth_doc`, :func:`write_truth_doc`, and the document as
+  checked, typed objects: :func:`read_true_scene` -> :class:`TrueScene` (objects, parts, joints, contacts).
 """
 
 import lazy_loader
@@ -30,4 +31,5 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
               "SIGNIFICANT_DIGITS"],
     "_truth": ["TRUTH_FORMAT", "check_truth_format", "read_truth_doc", "write_truth_doc", "shape_from_truth",
                "truth_shape_dict"],
+    "_truth_scene": ["TruePart", "TrueJoint", "TrueObject", "TrueScene", "true_scene_from_doc", "read_true_scene"],
 })

@@ -55,3 +55,32 @@ def test_malformed_truth_shapes_are_named(entry, message):
     from scenes.description import shape_from_truth
     with pytest.raises(DescriptionError, match=message):
         shape_from_truth(entry, "truth.json: part 7 shape 0")
+
+
+def test_the_true_scene_holds_what_the_scene_wrote(tmp_path, kitchen):
+    import numpy as np
+
+    from scenes.description import JointType, read_true_scene
+
+    true = read_true_scene(write_truth_json(kitchen, tmp_path / "truth.json"))
+    assert (true.scene, true.seed) == (kitchen.name, kitchen.seed)
+    for obj, t in zip(kitchen.objects, true.objects, strict=True):
+        assert (t.id, t.name, t.category) == (obj.id, obj.name, obj.category)
+        assert [p.link for p in t.parts] == [obj.link(p) for p in obj.parts]
+        for p, tp in zip(obj.parts, t.parts, strict=True):
+            assert np.allclose(tp.T_world_part, obj.T_world_object @ p.T_object_part)
+            assert all(a.isclose(b, atol=1e-12) for a, b in zip(p.shapes, tp.shapes, strict=True))
+        assert [(j.name, j.type, j.child_part_id) for j in t.joints] == [
+            (obj.joint_name(j), JointType(j.type), j.child) for j in obj.joints]
+        assert t.contacts == tuple(tuple(c) for c in obj.contacts)
+
+
+def test_a_malformed_true_scene_names_the_object_and_joint(tmp_path, kitchen):
+    from scenes.description import true_scene_from_doc
+
+    doc = truth_dict_from_scene(kitchen)
+    doc["objects"][0]["joints"][-1]["type"] = "ball"
+    obj, joint = doc["objects"][0], doc["objects"][0]["joints"][-1]
+    with pytest.raises(DescriptionError, match=rf"t.json object {obj['id']} \({obj['name']}\) joint {joint['name']}: "
+                                               r"unknown joint type 'ball'"):
+        true_scene_from_doc(doc, "t.json")
