@@ -17,7 +17,7 @@ import tempfile
 import numpy as np
 
 from simcheck.bullet_poses import T_from_pos_quat
-from simcheck.joint_table import JointInfo, JointRow, joint_table
+from simcheck.joint_table import JointInfo, joint_table
 
 __all__ = ["pb", "c_output_logged", "pybullet_said", "pybullet_version", "body_joint_table", "link_pose",
            "point_state"]
@@ -82,13 +82,15 @@ def body_joint_table(client: int, body: int) -> tuple[dict[str, JointInfo], dict
     """(joint name -> :class:`JointInfo`, link name -> PyBullet link index (base: -1)) of ``body``, in
     PyBullet's joint order (:func:`simcheck.joint_table.joint_table` over ``getJointInfo``)."""
     base = pb.getBodyInfo(body, physicsClientId=client)[0].decode()
-    rows = []
+    joints, parents = [], []
     for j in range(pb.getNumJoints(body, physicsClientId=client)):
         ji = pb.getJointInfo(body, j, physicsClientId=client)
-        rows.append(JointRow(name=ji[1].decode(), type=_JOINT_TYPES.get(ji[2], "unknown"), child_link=ji[12].decode(),
-                             parent_index=ji[16], lower=float(ji[8]), upper=float(ji[9]), max_force=float(ji[10]),
-                             max_velocity=float(ji[11]), damping=float(ji[6]), friction=float(ji[7])))
-    return joint_table(base, rows)
+        joints.append(JointInfo(name=ji[1].decode(), type=_JOINT_TYPES.get(ji[2], "unknown"), index=j,
+                                child_link=ji[12].decode(), parent_link="", lower=float(ji[8]), upper=float(ji[9]),
+                                max_force=float(ji[10]), max_velocity=float(ji[11]), damping=float(ji[6]),
+                                friction=float(ji[7])))
+        parents.append(ji[16])
+    return joint_table(base, joints, parents)
 
 
 def link_pose(client: int, body: int, index: int) -> np.ndarray:

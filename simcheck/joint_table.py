@@ -2,14 +2,18 @@
 
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Sequence
 from dataclasses import dataclass
 
-__all__ = ["JointInfo", "JointRow", "joint_table"]
+__all__ = ["JointInfo", "joint_table"]
 
 
 @dataclass(frozen=True)
 class JointInfo:
-    """A joint as loaded in PyBullet. ``lower``/``upper`` in rad or m; ``damping``/``friction`` from the URDF."""
+    """A joint as loaded in PyBullet: ``type`` "revolute", "prismatic", "fixed", "spherical", "planar" or
+    "unknown"; ``index`` in its body (its child link's index); ``lower``/``upper`` in rad or m; ``max_force``
+    N or N m, ``max_velocity`` m/s or rad/s; ``damping``/``friction`` from the URDF."""
 
     name: str
     type: str
@@ -24,34 +28,14 @@ class JointInfo:
     friction: float
 
 
-@dataclass(frozen=True)
-class JointRow:
-    """One joint as PyBullet reports it: its parent is a link INDEX (-1: the base link); ``type`` is
-    "revolute", "prismatic", "fixed", "spherical", "planar" or "unknown"."""
-
-    name: str
-    type: str
-    child_link: str
-    parent_index: int
-    lower: float
-    upper: float
-    max_force: float
-    max_velocity: float
-    damping: float
-    friction: float
-
-
-def joint_table(base_link: str, rows: list[JointRow]) -> tuple[dict[str, JointInfo], dict[str, int]]:
-    """(joint name -> :class:`JointInfo`, link name -> link index) of a body whose base link is
-    ``base_link`` (index -1) and whose joint ``j`` is ``rows[j]`` (its child link has index ``j``)."""
+def joint_table(base_link: str, joints: Sequence[JointInfo],
+                parent_index: Sequence[int]) -> tuple[dict[str, JointInfo], dict[str, int]]:
+    """(joint name -> :class:`JointInfo`, link name -> link index) of a body whose base link is ``base_link``
+    (index -1) and whose joint ``j`` is ``joints[j]`` (its child link has index ``j``) with parent link index
+    ``parent_index[j]`` (-1: the base link). Fills in each joint's ``index`` and ``parent_link``."""
     links = {base_link: -1}
-    for j, row in enumerate(rows):
-        links[row.child_link] = j
+    for j, info in enumerate(joints):
+        links[info.child_link] = j
     names = {v: k for k, v in links.items()}
-    joints = {}
-    for j, row in enumerate(rows):
-        joints[row.name] = JointInfo(
-            name=row.name, type=row.type, index=j, child_link=row.child_link, parent_link=names[row.parent_index],
-            lower=row.lower, upper=row.upper, max_force=row.max_force, max_velocity=row.max_velocity,
-            damping=row.damping, friction=row.friction)
-    return joints, links
+    return ({info.name: dataclasses.replace(info, index=j, parent_link=names[parent_index[j]])
+             for j, info in enumerate(joints)}, links)

@@ -2,16 +2,17 @@
 
 from __future__ import annotations
 
-from simcheck.joint_table import JointRow, joint_table
+from simcheck.joint_table import JointInfo, joint_table
 
 
-def _row(name, child, parent_index, type_="revolute"):
-    return JointRow(name=name, type=type_, child_link=child, parent_index=parent_index, lower=0.0, upper=1.0,
-                    max_force=10.0, max_velocity=2.0, damping=0.1, friction=0.2)
+def _info(name, child, type_="revolute"):
+    return JointInfo(name=name, type=type_, index=-9, child_link=child, parent_link="", lower=0.0, upper=1.0,
+                     max_force=10.0, max_velocity=2.0, damping=0.1, friction=0.2)
 
 
 def test_links_are_indexed_by_joint_and_parents_are_named():
-    joints, links = joint_table("base", [_row("j0", "a", -1), _row("j1", "b", 0, "prismatic"), _row("j2", "c", -1)])
+    joints, links = joint_table("base", [_info("j0", "a"), _info("j1", "b", "prismatic"), _info("j2", "c")],
+                                [-1, 0, -1])
     assert links == {"base": -1, "a": 0, "b": 1, "c": 2}
     assert list(joints) == ["j0", "j1", "j2"]
     assert (joints["j1"].index, joints["j1"].parent_link, joints["j1"].child_link) == (1, "a", "b")
@@ -20,4 +21,4 @@ def test_links_are_indexed_by_joint_and_parents_are_named():
 
 
 def test_a_single_link_body_has_only_its_base():
-    assert joint_table("box", []) == ({}, {"box": -1})
+    assert joint_table("box", [], []) == ({}, {"box": -1})
