@@ -36,6 +36,11 @@ class PhysicsConfig:
             zero-velocity motor of this force, which is also what keeps an opened door from drifting).
         overlap_tolerance: two scene links that already interpenetrate deeper than this (metres) in the
             loaded (closed) state never collide with each other (a third-party file's may; logged as a warning).
+        rest_contact_gap: two scene links closer than this (metres; touching, or interpenetrating by any
+            depth) in the loaded state are "in contact at rest" (sibling fronts, a door in its frame): Bullet
+            does not collide them, so the contact neither blocks the opening nor counts as a contact of the
+            moving part; how much deeper than at rest they then interpenetrate is recorded instead
+            (``CriteriaConfig.rest_contact_slack``; the policy: docs/decisions.md, "Touching at rest").
         speed_scale: fraction of each robot joint's URDF velocity limit used to time-parametrise a plan.
         max_joint_speed: cap on any robot joint speed while executing, rad/s or m/s.
         open_speed_scale: extra slow-down of the opening segment (pulling an object is done gently).
@@ -83,6 +88,7 @@ class PhysicsConfig:
     scene_joint_damping: float = 0.04
     min_joint_friction: float = 0.5
     overlap_tolerance: float = 0.002
+    rest_contact_gap: float = 0.001
     speed_scale: float = 0.5
     max_joint_speed: float = 0.8
     open_speed_scale: float = 0.6
@@ -149,6 +155,9 @@ class CriteriaConfig:
             velocity change spread over this window).
         articulation_tolerance: how far, m or rad, a scene joint may move in a given plan's segment that
             does not expect it to, and how far an expectation's ``from`` may be from the joint's value.
+        rest_contact_slack: links in contact at rest (``PhysicsConfig.rest_contact_gap``) may interpenetrate
+            at most this much deeper than they did at rest while the part moves, metres (a door whose
+            corner sweeps into the sibling it touched has passed through it: physically, it is blocked).
     """
 
     name: str = "partscene-default"
@@ -167,6 +176,7 @@ class CriteriaConfig:
     max_waypoint_gap: float = 0.1
     acceleration_window: float = 0.1
     articulation_tolerance: float = 0.01
+    rest_contact_slack: float = 0.003
 
     def replace(self, **changes) -> "CriteriaConfig":
         """A copy with ``changes`` applied."""

@@ -7,7 +7,8 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 
-__all__ = ["FLOOR", "ContactPoint", "robot_contact_points", "scene_link_contact_points", "deep_overlaps"]
+__all__ = ["FLOOR", "ContactPoint", "robot_contact_points", "scene_link_contact_points", "deep_overlaps",
+           "rest_contacts", "excess_penetration"]
 
 FLOOR = "floor"
 """``link_b`` of a contact with the floor plane."""
@@ -75,3 +76,24 @@ def deep_overlaps(rows: Iterable[Sequence], scene_names: Mapping[tuple[int, int]
         if a in scene_names and b in scene_names and dist < -tolerance:
             seen[(a, b)] = max(seen.get((a, b), 0.0), -dist)
     return seen
+
+
+def rest_contacts(rows: Iterable[Sequence], scene_names: Mapping[tuple[int, int], str],
+                  gap: float) -> dict[tuple[tuple[int, int], tuple[int, int]], float]:
+    """{((body, link) a, (body, link) b): penetration at rest m (negative: the gap between them)} of the
+    rows between two scene links closer than ``gap`` (m): touching or interpenetrating, in the order the
+    pairs first appear; a pair is listed once whichever way round PyBullet reports it."""
+    seen: dict[tuple, float] = {}
+    for cp in rows:
+        a, b, dist = (cp[1], cp[3]), (cp[2], cp[4]), cp[8]
+        if a in scene_names and b in scene_names and a != b and dist < gap:
+            key = (a, b) if (b, a) not in seen else (b, a)
+            seen[key] = max(seen.get(key, -gap), -dist)
+    return seen
+
+
+def excess_penetration(distances: Iterable[float], at_rest: float) -> float:
+    """How much deeper than ``at_rest`` (m, positive: penetration) two links interpenetrate now, m (>= 0),
+    given their current signed closest-point ``distances`` (m, negative: penetration; none: apart)."""
+    deepest = max((-float(d) for d in distances), default=0.0)
+    return max(0.0, deepest - max(at_rest, 0.0))

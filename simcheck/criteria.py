@@ -16,7 +16,8 @@ from simcheck.config import DEFAULT_CRITERIA, CriteriaConfig
 from simcheck.rollout import Rollout
 
 __all__ = ["CriterionResult", "at_release", "opened_amount", "opened_fraction", "opened_overshoot", "handle_path_deviation", "settled_linear_speed",
-           "settled_angular_speed", "unexpected_contact_force", "unexpected_contact_depth", "grasp_held", "grasp_force", "interaction_force",
+           "settled_angular_speed", "unexpected_contact_force", "unexpected_contact_depth", "rest_contact_penetration", "grasp_held", "grasp_force",
+           "interaction_force",
            "robot_joint_limits", "plan_found", "plan_collision_free", "rollout_criteria", "FLOOR"]
 
 FLOOR = "floor"
@@ -207,6 +208,20 @@ def unexpected_contact_depth(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -
                   f"{where}, {value * 1e3:.1f} mm deep")
 
 
+def rest_contact_penetration(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """The moving part may not pass into the links it touched at rest (sibling fronts, its frame) deeper than
+    it was at rest, beyond ``c.rest_contact_slack``: their contact is not a collision in the simulation (it
+    neither blocks the opening nor counts as an unexpected contact), so this is what stops a part going
+    through them. 0 when it touched nothing at rest."""
+    ex = np.asarray(r.rest_contact_excess, dtype=float)
+    value = float(np.max(ex)) if ex.size else 0.0
+    return _judge("rest_contact_penetration", value, c.rest_contact_slack, "<=", "m",
+                  "extra interpenetration with links touched at rest",
+                  f"{r.moving_link} passed {value * 1e3:.1f} mm into {r.rest_contact_worst or 'a link'} it touched "
+                  f"at rest: physically it is blocked there",
+                  f"touched at rest: {', '.join(r.rest_contact_links) or 'nothing'}")
+
+
 def grasp_held(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
     """Max slip, m, between the tool and the grasped point of the handle during the opening segment
     (``inf`` if the grasp did not exist for the whole segment)."""
@@ -307,5 +322,6 @@ def plan_collision_free(max_depth: float, detail: str, c: CriteriaConfig = DEFAU
 def rollout_criteria(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> tuple[CriterionResult, ...]:
     """Every rollout criterion, in the order a failure reason lists them (most telling first)."""
     return (grasp_held(r, c), grasp_force(r, c), opened_fraction(r, c), opened_overshoot(r, c),
-            handle_path_deviation(r, c), unexpected_contact_force(r, c), unexpected_contact_depth(r, c), interaction_force(r, c), settled_linear_speed(r, c),
+            handle_path_deviation(r, c), unexpected_contact_force(r, c), unexpected_contact_depth(r, c),
+            rest_contact_penetration(r, c), interaction_force(r, c), settled_linear_speed(r, c),
             settled_angular_speed(r, c), robot_joint_limits(r, c))

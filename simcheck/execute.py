@@ -85,6 +85,8 @@ class _Recorder:
         self.obj_contacts: dict = {}
         self.contact_rows: list = []
         self.obj_rows: list = []
+        self.rest_pairs = world.rest_contacts_of(moving)
+        self.rest_excess, self.rest_worst, self.rest_worst_excess = 0.0, "", 0.0
         self.t = 0.0
         self.steps = 0
         self.segment = -1
@@ -142,6 +144,11 @@ class _Recorder:
                 self.contacts[key] = (max(f, c.force), max(d, -c.distance))
             for c in w.scene_link_contacts(self.moving, self.config.contact_tolerance):
                 self.obj_contacts[c.link_b] = max(self.obj_contacts.get(c.link_b, 0.0), c.force)
+            if self.rest_pairs:
+                e, other = w.rest_contact_excess(self.rest_pairs)
+                self.rest_excess = max(self.rest_excess, e)
+                if e > self.rest_worst_excess:
+                    self.rest_worst, self.rest_worst_excess = other, e
         if self.steps % self.config.record_every == 0:
             self.sample()
 
@@ -170,6 +177,8 @@ class _Recorder:
         self.peak = self.mean
         r["finger_q"].append(w.finger_q())
         r["finger_contacts"].append(w.finger_contact_count(self.handle))
+        r["rest_contact_excess"].append(self.rest_excess)
+        self.rest_excess = 0.0
         for (a, b), (f, d) in self.contacts.items():
             self.contact_rows.append((k, a, b, f, d))
         for b, f in self.obj_contacts.items():
@@ -330,6 +339,8 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
         object_contact_sample=np.asarray([c[0] for c in orows], dtype=int),
         object_contact_link=np.asarray([c[1] for c in orows], dtype=str),
         object_contact_force=np.asarray([c[2] for c in orows], dtype=float),
+        rest_contact_links=tuple(dict.fromkeys(p[1] for p in rec.rest_pairs)),
+        rest_contact_excess=np.asarray(rows["rest_contact_excess"], dtype=float), rest_contact_worst=rec.rest_worst,
         wall_time=time.perf_counter() - t0)
 
 

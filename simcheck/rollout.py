@@ -23,7 +23,7 @@ ROLLOUT_FORMAT = "partscene.rollout/1"
 
 _META = ("joint", "moving_link", "handle_link", "robot_joint_names", "segment_names", "gripper_links",
          "requested_amount", "object_q0", "grasp_note", "time_step", "holding_force", "opening_type",
-         "finger_links", "opening_segment", "release_segment")
+         "finger_links", "opening_segment", "release_segment", "rest_contact_links", "rest_contact_worst")
 
 
 @dataclass(frozen=True)
@@ -74,6 +74,10 @@ class Rollout:
         opening_segment, release_segment: the names of the segment that opens the task joint and of the
             segment at whose end the part must rest ("open" and "release" for a planner's plan; a given
             plan's own names, :attr:`planners.PlanResult.opening_segment`).
+        rest_contact_links: the scene links the moving part touched at rest (their contact is not a
+            collision, :attr:`simcheck.config.PhysicsConfig.rest_contact_gap`).
+        rest_contact_excess: (n,) how much deeper than at rest the moving part interpenetrated any of them
+            since the previous sample, m (>= 0); rest_contact_worst: the link of the largest excess ("").
     """
 
     joint: str
@@ -121,10 +125,13 @@ class Rollout:
     holding_force: float = float("nan")
     opening_segment: str = "open"
     release_segment: str = "release"
+    rest_contact_links: tuple[str, ...] = ()
+    rest_contact_excess: np.ndarray | None = None
+    rest_contact_worst: str = ""
 
     def __post_init__(self) -> None:
         n = len(self.t)
-        for name in ("grasp_turn",):          # rollouts recorded before the gripper model
+        for name in ("grasp_turn", "rest_contact_excess"):     # rollouts recorded before these existed
             if getattr(self, name) is None:
                 object.__setattr__(self, name, np.zeros(n))
         if self.robot_q_target is None:
@@ -133,7 +140,8 @@ class Rollout:
             object.__setattr__(self, "opening_axis", np.full(3, np.nan))
         for name in ("segment", "robot_q", "object_q", "object_qd", "T_world_handle", "tool_pos", "grasp_point",
                      "planned_tool_pos", "planned_object_q", "link_speed", "link_angular_speed", "grasp_active",
-                     "grasp_force", "grasp_turn", "robot_q_target", "finger_q", "finger_contacts"):
+                     "grasp_force", "grasp_turn", "robot_q_target", "finger_q", "finger_contacts",
+                     "rest_contact_excess"):
             if len(getattr(self, name)) != n:
                 raise RolloutFormatError(f"rollout of joint {self.joint!r}: {name} has {len(getattr(self, name))} "
                                          f"samples, t has {n}")

@@ -9,10 +9,12 @@ On load it
 * disables the default velocity motors PyBullet puts on every scene joint (they lock drawers and
   doors) and replaces them with a zero-velocity motor whose force is the joint's Coulomb friction
   (PyBullet applies URDF ``damping`` but ignores ``friction``: it is emulated here);
-* disables collisions between a link and its never-moving ancestors, and between scene links that
-  already interpenetrate as loaded deeper than ``overlap_tolerance`` (:func:`simcheck.contacts.deep_overlaps`;
-  a third-party file's links may; partscene's own scene.urdf and truth.urdf keep their links apart,
-  recon.clearance). Each such pair is logged as a warning.
+* disables collisions between a link and its never-moving ancestors, and between scene links in contact
+  as loaded: closer than ``rest_contact_gap``, touching or interpenetrating (:func:`simcheck.contacts.rest_contacts`;
+  sibling fronts and doors in their frames of a third-party file often touch; partscene's own scene.urdf
+  and truth.urdf keep their links apart, recon.clearance). Pairs deeper than ``overlap_tolerance`` are
+  logged as a warning. Every such pair is kept in ``LoadedScene.rest_contacts`` with its depth at rest, so
+  that execution can tell when they interpenetrate further (docs/decisions.md, "Touching at rest").
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ from scenes.description import DescriptionError, read_urdf
 from simcheck.bullet import body_joint_table, c_output_logged, link_pose, pb, pybullet_said
 from simcheck.bullet_poses import quat_xyzw_from_R
 from simcheck.config import PhysicsConfig
-from simcheck.contacts import deep_overlaps
+from simcheck.contacts import rest_contacts
 from simcheck.errors import SceneLoadError
 from simcheck.joint_table import JointInfo
 from simcheck.scene_bodies import ANCHOR, scene_bodies
@@ -50,7 +52,9 @@ class LoadedScene:
     joints : scene joint name -> :class:`JointInfo` (index in its body; -1 for a fixed joint between
         never-moving links), in URDF order
     joint_body : scene joint name -> the body id holding it (joints with an index >= 0)
-    disabled_overlaps : (link a, link b, depth m) of each pair whose collisions were disabled as loaded
+    disabled_overlaps : (link a, link b, depth m) of each pair overlapping deeper than ``overlap_tolerance``
+    rest_contacts : (link a, link b, penetration at rest m, negative: a gap) of each pair in contact as
+        loaded (their collisions disabled; the deep overlaps included)
     """
 
     link_at: dict[str, tuple[int, int]]
@@ -60,6 +64,7 @@ class LoadedScene:
     joints: dict[str, JointInfo]
     joint_body: dict[str, int]
     disabled_overlaps: tuple[tuple[str, str, float], ...]
+    rest_contacts: tuple[tuple[str, str, float], ...] = ()
 
 
 def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig) -> LoadedScene:
@@ -121,25 +126,33 @@ def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig) -> LoadedSc
                 if ancestor in static_pose:
                     for index in bl.values():
                         pb.setCollisionFilterPair(body, link_at[ancestor][0], index, -1, 0, physicsClientId=c)
-    disabled = _filter_initial_overlaps(c, scene_urdf, names, config.overlap_tolerance)
+    disabled, resting = _filter_initial_overlaps(c, scene_urdf, names, config.overlap_tolerance,
+                                                 config.rest_contact_gap)
     return LoadedScene(
         link_at=link_at, names=names, static_pose=static_pose,
         links={name: link_at[name] for name in links},
         joints={name: dataclasses.replace(info, index=joint_at[name][1] if name in joint_at else -1)
                 for name, info in joints.items()},
-        joint_body={name: joint_at[name][0] for name in joints if name in joint_at}, disabled_overlaps=disabled)
+        joint_body={name: joint_at[name][0] for name in joints if name in joint_at}, disabled_overlaps=disabled,
+        rest_contacts=resting)
 
 
 def _filter_initial_overlaps(client: int, scene_urdf: Path, names: dict[tuple[int, int], str],
-                             tolerance: float) -> tuple[tuple[str, str, float], ...]:
-    """Disable collision between scene links that interpenetrate as loaded deeper than ``tolerance`` (m);
-    (link a, link b, depth m) of each pair, each logged as a warning."""
+                             tolerance: float, gap: float) -> tuple[tuple, tuple]:
+    """Disable collision between scene links in contact as loaded (closer than ``gap`` m: touching or
+    interpenetrating); returns ((link a, link b, depth m) of the pairs deeper than ``tolerance``, each logged
+    as a warning; (link a, link b, penetration at rest m, negative: a gap) of every such pair)."""
     pb.performCollisionDetection(physicsClientId=client)
-    seen = deep_overlaps(pb.getContactPoints(physicsClientId=client), names, tolerance)
+    seen = rest_contacts(pb.getContactPoints(physicsClientId=client), names, gap)
     for a, b in seen:
         pb.setCollisionFilterPair(a[0], b[0], a[1], b[1], 0, physicsClientId=client)
-    disabled = tuple((names[a], names[b], depth) for (a, b), depth in seen.items())
+    resting = tuple((names[a], names[b], depth) for (a, b), depth in seen.items())
+    disabled = tuple(r for r in resting if r[2] > tolerance)
     for a, b, depth in disabled:
         log.warning("scene %s: links %s and %s overlap by %.1f mm as loaded: collisions between them "
                     "disabled", scene_urdf, a, b, depth * 1e3)
-    return disabled
+    for a, b, depth in resting:
+        if depth <= tolerance:
+            log.info("scene %s: links %s and %s touch at rest (%.1f mm): they do not block each other",
+                     scene_urdf, a, b, depth * 1e3)
+    return disabled, resting

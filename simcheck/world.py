@@ -23,7 +23,7 @@ import numpy as np
 
 from simcheck.bullet import c_output_logged, link_pose, pb, point_state, pybullet_version
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
-from simcheck.contacts import FLOOR, ContactPoint, robot_contact_points, scene_link_contact_points
+from simcheck.contacts import FLOOR, ContactPoint, excess_penetration, robot_contact_points, scene_link_contact_points
 from simcheck.errors import SceneLoadError, TaskSpecError
 from simcheck.grasp import FingerContacts
 from simcheck.grasp_spring import GraspSpring, spring_force
@@ -72,6 +72,7 @@ class World:
             self.floor = self._load_floor()
             self._scene = load_scene(self.client, self.scene_urdf, config)
             self.disabled_overlaps = self._scene.disabled_overlaps
+            self.rest_contacts = self._scene.rest_contacts
             self.robot_spec = robot
             self._robot: LoadedRobot | None = None
             self.robot = None
@@ -267,6 +268,33 @@ class World:
         body, idx = self._scene_link_index(link)
         rows = pb.getContactPoints(bodyA=body, linkIndexA=idx, physicsClientId=self.client)
         return scene_link_contact_points(rows, link, (body, idx), self._scene.names, self.floor, min_depth)
+
+    def rest_contacts_of(self, link: str) -> tuple[tuple[str, str, float], ...]:
+        """The pairs in contact at rest (:attr:`rest_contacts`) between a link of ``link``'s body (the part
+        moved with it: its handle, its drawer box) and a link of another body, as (that link, the other
+        link, penetration at rest m)."""
+        body = self._scene_link_index(link)[0]
+        out = []
+        for a, b, depth in self.rest_contacts:
+            ba, bb = self._scene.link_at[a][0], self._scene.link_at[b][0]
+            if ba == body and bb != body:
+                out.append((a, b, depth))
+            elif bb == body and ba != body:
+                out.append((b, a, depth))
+        return tuple(out)
+
+    def rest_contact_excess(self, pairs: tuple[tuple[str, str, float], ...]) -> tuple[float, str]:
+        """(largest excess m, the other link) over ``pairs`` (from :meth:`rest_contacts_of`): how much deeper
+        than at rest each pair interpenetrates now (their collisions are disabled, so closest points are
+        queried); (0, "") when none is deeper."""
+        worst, other = 0.0, ""
+        for a, b, depth in pairs:
+            (ba, ia), (bb, ib) = self._scene.link_at[a], self._scene.link_at[b]
+            rows = pb.getClosestPoints(ba, bb, 0.0, linkIndexA=ia, linkIndexB=ib, physicsClientId=self.client)
+            e = excess_penetration((r[8] for r in rows), depth)
+            if e > worst:
+                worst, other = e, b
+        return worst, other
 
     def finger_contact_count(self, scene_link: str, within: float = 0.001) -> int:
         """How many finger links are within ``within`` metres of (touching) scene link ``scene_link`` now.

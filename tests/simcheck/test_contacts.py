@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
-from simcheck.contacts import FLOOR, deep_overlaps, robot_contact_points, scene_link_contact_points
+import pytest
+
+from simcheck.contacts import (FLOOR, deep_overlaps, excess_penetration, rest_contacts, robot_contact_points,
+                               scene_link_contact_points)
 
 ROBOT, FLOOR_BODY, CABINET, DRAWER = 5, 0, 1, 2
 SCENE = {(CABINET, -1): "carcass", (DRAWER, 0): "drawer", (DRAWER, 1): "handle"}
@@ -39,3 +42,18 @@ def test_deep_overlaps_keep_the_deepest_point_of_each_scene_pair_in_first_seen_o
             _row(ROBOT, CABINET, 0, -1, -0.1)]
     assert deep_overlaps(rows, SCENE, tolerance=0.001) == {((DRAWER, 1), (CABINET, -1)): 0.006,
                                                            ((DRAWER, 0), (CABINET, -1)): 0.010}
+
+
+def test_rest_contacts_keep_touching_and_overlapping_scene_pairs_once_with_their_depth():
+    rows = [_row(DRAWER, CABINET, 0, -1, 0.0004),        # touching (a 0.4 mm gap)
+            _row(CABINET, DRAWER, -1, 0, -0.0002),       # the same pair the other way round, 0.2 mm deep
+            _row(DRAWER, CABINET, 1, -1, 0.005),         # 5 mm apart: not in contact
+            _row(ROBOT, CABINET, 0, -1, -0.1)]           # the robot: not a scene pair
+    assert rest_contacts(rows, SCENE, gap=0.001) == {((DRAWER, 0), (CABINET, -1)): 0.0002}
+
+
+def test_excess_penetration_counts_only_what_is_deeper_than_at_rest():
+    assert excess_penetration([], 0.001) == 0.0                       # apart now
+    assert excess_penetration([-0.0005, -0.0015], 0.001) == pytest.approx(0.0005)
+    assert excess_penetration([-0.004], -0.0003) == pytest.approx(0.004)   # a gap at rest counts as 0
+    assert excess_penetration([-0.0008], 0.001) == 0.0
