@@ -290,7 +290,8 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
             raise HandleNotFoundError(
                 f"{where}: no handle found on moving link {moving!r} (no fixed child link named '*handle*', "
                 f"no single fixed child, no collision geometry named '*handle*', no "
-                f"geometry standing out of its front); give OpenTask.grasp_point or grasp_link")
+                f"geometry standing out of its front): nothing to pull, and a closed front's free edge leaves no "
+                f"room for a finger behind it; give OpenTask.grasp_point or grasp_link")
         best = _outermost(scene, task.joint, cands, T_world_moving, values, direction)
         grasp_link, depth_geom = best[0], best
         a, centre, width = _bar(best[1])

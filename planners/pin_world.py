@@ -206,8 +206,10 @@ class PlanningWorld:
             self._set_scene_joint(name, float(value))
         if not self.model.existJointName(pre + task_joint):
             raise SceneURDFError(f"{path}: pinocchio model has no joint {task_joint!r}")
-        self.task_idx = self.model.joints[self.model.getJointId(pre + task_joint)].idx_q
-        self.s0 = float(self.q[self.task_idx])
+        tj = self.model.joints[self.model.getJointId(pre + task_joint)]
+        self.task_idx, self.task_nq = tj.idx_q, tj.nq      # nq 2: a continuous joint, stored as (cos, sin)
+        self.s0 = float(self.q[self.task_idx]) if tj.nq == 1 else \
+            float(np.arctan2(self.q[self.task_idx + 1], self.q[self.task_idx]))
         # Gripper-handle pairs, switched off while grasp contact is allowed.
         grip = {i for i, ln in enumerate(robot.geom_links) if ln in set(robot.spec.gripper_links)}
         handle = {i for i, go in enumerate(self.geom.geometryObjects) if key_of.get(go.name) in handle_geoms}
@@ -235,6 +237,14 @@ class PlanningWorld:
         elif j.nq == 2:   # continuous: (cos, sin)
             self.q[j.idx_q:j.idx_q + 2] = (np.cos(value), np.sin(value))
 
+    def _put_task(self, q: np.ndarray, s: float | None) -> None:
+        """Write the task joint's value ``s`` (rad or m; None: its start value) into the full configuration ``q``."""
+        s = self.s0 if s is None else float(s)
+        if self.task_nq == 1:
+            q[self.task_idx] = s
+        else:
+            q[self.task_idx:self.task_idx + 2] = (np.cos(s), np.sin(s))
+
     def _set_allow(self, allow: bool) -> None:
         if allow != self._allow:
             for k in self.grasp_pairs:
@@ -253,14 +263,14 @@ class PlanningWorld:
         self.checks += 1
         self._set_allow(bool(allow_grasp_contact))
         self.q[self.robot.idx_q] = q
-        self.q[self.task_idx] = self.s0 if s is None else float(s)
+        self._put_task(self.q, s)
         return bool(pin.computeCollisions(self.model, self.data, self.manager, self.q, True))
 
     def colliding_pairs(self, q: np.ndarray, s: float | None = None, allow_grasp_contact: bool = False) -> list:
         """Names of every colliding geometry pair at ``(q, s)`` (for reasons and debugging)."""
         self._set_allow(bool(allow_grasp_contact))
         self.q[self.robot.idx_q] = q
-        self.q[self.task_idx] = self.s0 if s is None else float(s)
+        self._put_task(self.q, s)
         pin.computeCollisions(self.model, self.data, self.geom, self.gdata, self.q, False)
         out = []
         for k, r in enumerate(self.gdata.collisionResults):
@@ -273,7 +283,7 @@ class PlanningWorld:
         """Smallest distance (m) between the robot's non-gripper links and the scene (floor excluded) at
         ``(q, s)``; negative when they penetrate. Costs one distance query per pair (~ms): for ranking."""
         self.q[self.robot.idx_q] = q
-        self.q[self.task_idx] = self.s0 if s is None else float(s)
+        self._put_task(self.q, s)
         pin.updateGeometryPlacements(self.model, self.data, self.geom, self.gdata, self.q)
         best = np.inf
         for k in self.arm_scene_pairs:
@@ -286,7 +296,7 @@ class PlanningWorld:
     def moving_link_pose(self, s: float) -> np.ndarray:
         """``(4, 4)`` world pose of the task joint's child link at joint value ``s``."""
         q = self.q.copy()
-        q[self.task_idx] = s
+        self._put_task(q, s)
         pin.framesForwardKinematics(self.model, self.data, q)
         fid = self.model.getFrameId(self.PREFIX + self.scene.joints[self.task_joint].child)
         return np.array(self.data.oMf[fid].homogeneous)

@@ -153,7 +153,7 @@ class Session:
         crit: list[CriterionResult] = [plan_found(True, plan.reason),
                                        plan_collision_free(check.max_depth, check.detail, criteria)]
         ref = self.ref_joints.get(task.joint)
-        if ref is None or ref.type not in ("prismatic", "revolute"):
+        if ref is None or ref.type not in ("prismatic", "revolute", "continuous"):
             # the reference cannot move this part: nothing to execute; the estimate is wrong
             timings["total"] = time.perf_counter() - t_all
             what = "has no joint" if ref is None else f"has a {ref.type} joint"

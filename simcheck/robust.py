@@ -149,7 +149,7 @@ def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, 
     for tc in nominal.tasks:
         plan = keeper.plans.get(tc.joint)
         ref = joints.get(tc.joint)
-        if plan is None or ref is None or ref.type not in ("prismatic", "revolute"):
+        if plan is None or ref is None or ref.type not in ("prismatic", "revolute", "continuous"):
             out_tasks.append(tc)            # not planned / nothing to move: the nominal verdict stands
             continue
         mode = "physics" if against is not None else "scan"

@@ -85,7 +85,8 @@ CATALOGUE: tuple = (
               F("door_right", (0, 0.7, 0.1, 0.75), frame="rotated", handle="mesh", sign=-1))),
 )
 
-FIXTURES: tuple = ("kitchen_unit_double_door", "dresser_six", "microwave_left_hinge", "nightstand")
+FIXTURES: tuple = ("kitchen_unit_double_door", "dresser_six", "microwave_left_hinge", "nightstand",
+                   "microwave_continuous")
 
 
 def spec_named(name: str):

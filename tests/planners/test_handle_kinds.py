@@ -47,5 +47,6 @@ def test_the_handle_is_found_whatever_its_kind(obj, k, source, shape, tmp_path):
 def test_a_front_without_a_handle_is_refused_naming_what_was_looked_for(tmp_path):
     o = thirdparty.build_object(thirdparty.spec_named("sink_base_no_handles"), tmp_path)
     s = read_scene_urdf(o.urdf)
-    with pytest.raises(HandleNotFoundError, match="no geometry standing out of its front"):
+    with pytest.raises(HandleNotFoundError, match="no geometry standing out of its front.: nothing to pull, and a closed "
+                       "front.s free edge leaves no room for a finger behind it"):
         find_handle(s, OpenTask("door", o.fronts[0].joint), {}, CFG)

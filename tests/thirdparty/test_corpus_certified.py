@@ -12,7 +12,8 @@ from thirdparty.wrong import wrong_estimate
 CASES = [("kitchen_unit_double_door", 1),   # mesh handle, opens toward negative values, touches its sibling
          ("dresser_six", 4),                # mesh handle drawer, negative range, touching fronts, no inertials
          ("microwave_left_hinge", 0),       # 100 deg range, negative
-         ("nightstand", 1)]                 # a knob as its own link; the door opens toward negative values
+         ("nightstand", 1),                 # a knob as its own link; the door opens toward negative values
+         ("microwave_continuous", 0)]       # a continuous hinge (pinocchio stores it as cos, sin)
 
 
 @pytest.fixture(scope="module")
