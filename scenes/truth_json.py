@@ -6,12 +6,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .description import (TRUTH_FORMAT, DescriptionError, check_truth_format, read_truth_doc, shape_from_truth,
+from .description import (TRUTH_FORMAT, DescriptionError, TrueScene, read_truth_doc, true_scene_from_doc,
                           truth_shape_dict, write_truth_doc)
 from .config import DEFAULT_GENERATOR
 from .errors import SceneSpecError
 from .validate import validate_scene
-from .model import ArticulatedObject, Joint, JointType, Part, Scene, Wall
+from .model import ArticulatedObject, Joint, Part, Scene, Wall
 
 __all__ = ["TRUTH_FORMAT", "truth_dict_from_scene", "write_truth_json", "scene_from_truth_dict",
            "read_truth_json"]
@@ -63,39 +63,33 @@ def write_truth_json(scene: Scene, path: str | Path) -> Path:
 
 
 def scene_from_truth_dict(d: dict, source: str = "truth.json") -> Scene:
-    """Inverse of :func:`truth_dict_from_scene` (joint axes/origins back to object frames)."""
+    """Inverse of :func:`truth_dict_from_scene` (joint axes/origins back to object frames), read through the
+    description's checked truth (:func:`scenes.description.true_scene_from_doc`)."""
     try:
-        check_truth_format(d, source)
+        true = true_scene_from_doc(d, source)
     except DescriptionError as e:
         raise SceneSpecError(str(e)) from e
     try:
-        return _scene_from(d)
+        return _scene_from(true)
     except (KeyError, TypeError, ValueError, DescriptionError) as e:
         raise SceneSpecError(f"{source}: malformed truth ({type(e).__name__}: {e})") from e
 
 
-def _scene_from(d: dict) -> Scene:
+def _scene_from(true: TrueScene) -> Scene:
     objects = []
-    for od in d["objects"]:
-        T_wo = np.array(od["T_world_object"], float)
-        T_ow = np.linalg.inv(T_wo)
-        parts = tuple(Part(p["id"], p["label"], T_ow @ np.array(p["T_world_part"], float),
-                           tuple(shape_from_truth(s, f"part {p['id']} shape {k}") for k, s in enumerate(p["shapes"])),
-                           float(p.get("density", DEFAULT_GENERATOR.densities.default)))
-                      for p in od["parts"])
-        joints = tuple(Joint(JointType(j["type"]), j["parent_part_id"], j["child_part_id"],
-                             T_ow[:3, :3] @ np.array(j["axis"], float),
-                             T_ow[:3, :3] @ np.array(j["origin"], float) + T_ow[:3, 3],
-                             float(j["lower"]), float(j["upper"]), j.get("handle_part_id"),
-                             float(j.get("effort", 0.0)), float(j.get("velocity", 0.0)),
-                             float(j.get("damping", 0.0)), float(j.get("friction", 0.0)))
-                       for j in od["joints"])
-        objects.append(ArticulatedObject(od["id"], od["category"], parts, joints,
-                                         tuple(tuple(c) for c in od["contacts"]), T_wo, od["supported_by"]))
-    walls = tuple(Wall(w["name"], np.array(w["size"], float), np.array(w["T_world_wall"], float))
-                  for w in d.get("walls", []))
-    return Scene(d["scene"], int(d["seed"]), tuple(objects), walls,
-                 np.array(d.get("room_size", [0.0, 0.0]), float))
+    default_density = DEFAULT_GENERATOR.densities.default
+    for o in true.objects:
+        T_ow = np.linalg.inv(o.T_world_object)
+        parts = tuple(Part(p.id, p.label, T_ow @ p.T_world_part, p.shapes,
+                           default_density if p.density is None else p.density) for p in o.parts)
+        joints = tuple(Joint(j.type, j.parent_part_id, j.child_part_id, T_ow[:3, :3] @ j.axis,
+                             T_ow[:3, :3] @ j.origin + T_ow[:3, 3], j.lower, j.upper, j.handle_part_id,
+                             j.effort, j.velocity, j.damping, j.friction)
+                       for j in o.joints)
+        objects.append(ArticulatedObject(o.id, o.category, parts, joints, o.contacts, o.T_world_object,
+                                         o.supported_by))
+    walls = tuple(Wall(w.name, w.size, w.T_world_wall) for w in true.walls)
+    return Scene(true.scene, true.seed, tuple(objects), walls, true.room_size)
 
 
 def read_truth_json(path: str | Path) -> Scene:

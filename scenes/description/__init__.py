@@ -31,5 +31,5 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
               "SIGNIFICANT_DIGITS"],
     "_truth": ["TRUTH_FORMAT", "check_truth_format", "read_truth_doc", "write_truth_doc", "shape_from_truth",
                "truth_shape_dict"],
-    "_truth_scene": ["TruePart", "TrueJoint", "TrueObject", "TrueScene", "true_scene_from_doc", "read_true_scene"],
+    "_truth_scene": ["TruePart", "TrueJoint", "TrueObject", "TrueWall", "TrueScene", "true_scene_from_doc", "read_true_scene"],
 })

@@ -3,12 +3,16 @@ objects, parts, shapes, joints and contact edges, used by ``recon.metrics`` (wha
 
 Poses and joint axes/origins are in the WORLD frame, as in the file; each part's shapes are in the part's
 frame. Every problem raises :class:`DescriptionError` naming the file, object, part, shape or joint.
-Optional fields take the defaults of ``docs/contracts.md`` (limits 0, no handle, no dynamics).
+Required per object: ``id``, ``category``, ``T_world_object``, ``parts`` (``id``, ``label``, ``T_world_part``,
+``shapes``), ``joints`` (the whole part tree: ``name``, ``type``, ``parent_part_id``, ``child_part_id``) and
+``contacts``; the rest takes the defaults of ``docs/contracts.md`` (limits 0, no handle, no dynamics, on the
+floor, no walls).
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -20,7 +24,7 @@ from ._model import JointType
 from ._shape import Shape
 from ._truth import check_truth_format, read_truth_doc, shape_from_truth
 
-__all__ = ["TruePart", "TrueJoint", "TrueObject", "TrueScene", "true_scene_from_doc", "read_true_scene"]
+__all__ = ["TruePart", "TrueJoint", "TrueObject", "TrueWall", "TrueScene", "true_scene_from_doc", "read_true_scene"]
 
 
 @dataclass(frozen=True)
@@ -61,7 +65,8 @@ class TrueJoint:
 @dataclass(frozen=True)
 class TrueObject:
     """One true object: ``id``, ``name``, ``category``, ``T_world_object`` (4, 4), ``size`` (3,) metres of the
-    closed object (nan when not given), parts, joints, and undirected contact edges (part id pairs)."""
+    closed object (nan when not given), parts, joints, undirected contact edges (part id pairs), and the id
+    of the object it stands on (``None``: the floor)."""
 
     id: int
     name: str
@@ -71,15 +76,27 @@ class TrueObject:
     parts: tuple[TruePart, ...]
     joints: tuple[TrueJoint, ...]
     contacts: tuple[tuple[int, int], ...]
+    supported_by: int | None = None
+
+
+@dataclass(frozen=True)
+class TrueWall:
+    """A wall box: ``name``, ``size`` (3,) metres, ``T_world_wall`` (4, 4) of its centre."""
+
+    name: str
+    size: np.ndarray
+    T_world_wall: np.ndarray
 
 
 @dataclass(frozen=True)
 class TrueScene:
-    """Every true object of one scene (``scene`` name and ``seed``)."""
+    """Every true object of one scene (``scene`` name and ``seed``), its walls and ``room_size`` (2,) metres."""
 
     scene: str
     seed: int
     objects: tuple[TrueObject, ...]
+    walls: tuple[TrueWall, ...] = ()
+    room_size: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))
 
 
 def _pose(value: Any, where: str) -> np.ndarray:
@@ -147,16 +164,24 @@ def _object(o: Mapping, where: str) -> TrueObject:
     part_ids = {p.id for p in parts}
     if len(part_ids) != len(parts):
         raise DescriptionError(f"{where}: duplicate part ids")
-    joints = [_joint(j, part_ids, where) for j in o.get("joints", [])]
+    joints = [_joint(j, part_ids, where) for j in _field(o, "joints", where)]
     contacts = []
-    for edge in o.get("contacts", []):
+    for edge in _field(o, "contacts", where):
         if len(edge) != 2 or not set(int(e) for e in edge) <= part_ids or edge[0] == edge[1]:
             raise DescriptionError(f"{where}: contact edge {edge!r} must join two distinct parts of the object")
         contacts.append((int(edge[0]), int(edge[1])))
     return TrueObject(oid, name, str(_field(o, "category", where)),
                       _pose(_field(o, "T_world_object", where), f"{where}.T_world_object"),
                       np.array(o.get("size", [np.nan] * 3), dtype=np.float64), tuple(parts), tuple(joints),
-                      tuple(contacts))
+                      tuple(contacts), None if o.get("supported_by") is None else int(o["supported_by"]))
+
+
+def _wall(w: Mapping, where: str) -> TrueWall:
+    name = str(_field(w, "name", where))
+    size = np.array(_field(w, "size", f"{where} wall {name}"), dtype=np.float64).reshape(-1)
+    if size.shape != (3,) or not np.all(np.isfinite(size)):
+        raise DescriptionError(f"{where} wall {name}: size must be 3 finite numbers")
+    return TrueWall(name, size, _pose(_field(w, "T_world_wall", f"{where} wall {name}"), f"{where} wall {name}.T_world_wall"))
 
 
 def true_scene_from_doc(doc: Mapping, source: str = "truth.json") -> TrueScene:
@@ -171,7 +196,9 @@ def true_scene_from_doc(doc: Mapping, source: str = "truth.json") -> TrueScene:
     ids = [o.id for o in objects]
     if len(set(ids)) != len(ids):
         raise DescriptionError(f"{source}: duplicate object ids {sorted(ids)}")
-    return TrueScene(str(doc.get("scene", "")), int(doc.get("seed", 0) or 0), objects)
+    walls = tuple(_wall(w, source) for w in doc.get("walls", []))
+    room = np.array(doc.get("room_size", [0.0, 0.0]), dtype=np.float64)
+    return TrueScene(str(doc.get("scene", "")), int(doc.get("seed", 0) or 0), objects, walls, room)
 
 
 def read_true_scene(path: str | Path) -> TrueScene:
