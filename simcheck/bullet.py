@@ -112,5 +112,7 @@ def point_state(client: int, body: int, index: int, p_local: np.ndarray) -> tupl
     s = pb.getLinkState(body, index, computeLinkVelocity=1, computeForwardKinematics=1, physicsClientId=client)
     T = T_from_pos_quat(s[4], s[5])
     p = T[:3, :3] @ p_local + T[:3, 3]
-    v = np.asarray(s[6]) + np.cross(np.asarray(s[7]), p - np.asarray(s[0]))
+    (wx, wy, wz), (rx, ry, rz) = s[7], (p - np.asarray(s[0])).tolist()
+    # v = v_com + w x r, the cross product written out (np.cross costs ~30 us on (3,) vectors; same result)
+    v = np.asarray(s[6]) + np.array([wy * rz - wz * ry, wz * rx - wx * rz, wx * ry - wy * rx])
     return p, v
