@@ -7,6 +7,7 @@ world-aligned at the tool origin (rows: linear velocity, angular velocity), e.g.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -95,6 +96,12 @@ def solve_ik(pose_jacobian, T_target: np.ndarray, q_seed: np.ndarray, lower: np.
     return best
 
 
+def _norm(v: np.ndarray) -> float:
+    """``np.linalg.norm(v)`` of a 1-D float array (the same ``sqrt(v . v)``) without its argument checks,
+    which cost more than the arithmetic in the IK loop."""
+    return math.sqrt(v.dot(v))
+
+
 def _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping, max_iter, max_step) -> IKResult:
     W = np.sqrt(w)
     damp = damping ** 2 * np.eye(6)
@@ -102,7 +109,7 @@ def _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping,
     for it in range(1, max_iter + 1):
         T, J = pose_jacobian(q)
         e = pose_error(T, T_target)
-        pe, re = float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:]))
+        pe, re = _norm(e[:3]), _norm(e[3:])
         if pe < pos_tol and re < rot_tol:
             return IKResult(True, q, pe, re, it)
         history.append(pe + 0.1 * re)
