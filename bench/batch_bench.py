@@ -1,4 +1,4 @@
-"""Benchmark of ``simcheck batch``: ``python -m bench.batch_bench [--kitchens 8] [--out DIR]``.
+"""Benchmark of ``simcheck batch``: ``python -m bench.batch_bench [--kitchens 10] [--out DIR]``.
 
 Generates kitchens (truth only: a cabinet with a door and drawers, a microwave door, refrigerator doors;
 about 8 tasks each) and certifies every drawer and door of their truth scenes:
@@ -91,7 +91,7 @@ def _cpu(run: dict) -> float:
 
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m bench.batch_bench", description=__doc__.splitlines()[0])
-    p.add_argument("--kitchens", type=int, default=8, help="generated kitchens (about 8 tasks each; default 8)")
+    p.add_argument("--kitchens", type=int, default=10, help="generated kitchens (about 8 tasks each; default 10)")
     p.add_argument("--out", default=None, help="keep the files here (default: a temp folder)")
     args = p.parse_args(argv)
     import logging
@@ -146,7 +146,7 @@ def main(argv: list[str] | None = None) -> int:
     rss = [r["worker"]["peak_rss_mb"] for r in _records(root / "batch2", r2.rows)]
     for w, wall, r, cpu, rate_c, rate_w in ((1, w1, r1, cpu1, rate_cpu1, rate_wall1), (2, w2, r2, cpu2, rate_cpu2, rate_wall2)):
         c = r.run["cpu_seconds"]
-        print(f"\nbatch, {w} worker{'s' * (w > 1)} ({r.totals}, Ray tasks of {chunk_size(n, w)} certifications): "
+        print(f"\nbatch, {w} worker{'s' * (w > 1)} ({r.totals}, Ray tasks of {chunk_size(n, w)} down to 1 certifications): "
               f"CPU {cpu:.1f} s = driver {c['driver']:.1f} + Ray services {c.get('ray_services', 0):.1f} + workers "
               f"{c.get('workers', 0):.1f} ({', '.join(f'{x:.1f}' for x in c.get('per_worker', []))})")
         print(f"  {rate_c:,.0f} certifications per core-hour of CPU time; wall {wall:.1f} s = {rate_w:,.0f} per "

@@ -1,6 +1,7 @@
 """The batch driver on Ray: reconstruct the manifest's scans once, then certify every (scene, task),
 skipping what the store already holds. The tasks of one scene are sent in chunks (one Ray task runs a
-chunk's certifications one after the other, each stored as soon as it is done; see :func:`chunk_size`),
+chunk's certifications one after the other, each stored as soon as it is done), sized from the tasks
+still queued (:func:`chunk_size`: large at first, single tasks at the end, so the CPUs finish together),
 at most one chunk in flight per CPU of the cluster.
 
 Faults stay local to their task: an exception, a blown budget (see :mod:`simcheck.batching.worker`) or
@@ -24,7 +25,7 @@ import dataclasses
 import logging
 import signal
 import time
-from collections import Counter
+from collections import Counter, deque
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -56,11 +57,11 @@ class RunSettings:
 MAX_CHUNK = 16
 
 
-def chunk_size(n_tasks: int, slots: int) -> int:
-    """Tasks per Ray task for ``n_tasks`` to run on ``slots`` CPUs: about an eighth of a slot's share, so
-    the driver handles a few Ray tasks per CPU instead of one per certification while the last chunks
-    still spread over every CPU; between 1 and :data:`MAX_CHUNK`."""
-    return max(1, min(MAX_CHUNK, n_tasks // (8 * max(slots, 1))))
+def chunk_size(queued: int, slots: int) -> int:
+    """Tasks in the next Ray task when ``queued`` tasks wait for ``slots`` CPUs: a quarter of a CPU's
+    share of them (guided self-scheduling), between 1 and :data:`MAX_CHUNK`. The driver then handles a
+    few Ray tasks per CPU instead of one per certification, and the last ones are single tasks."""
+    return max(1, min(MAX_CHUNK, queued // (4 * max(slots, 1))))
 
 
 @dataclass
@@ -344,16 +345,13 @@ def run_jobs(jobs: list[Job], store: Store, settings: RunSettings, slots: int, m
     return progress
 
 
-def _chunks(pending: list[Job], size: int) -> list[list[Job]]:
-    """``pending`` cut into chunks of at most ``size`` jobs of one scene (and reference) each, in order."""
-    out: list[list[Job]] = []
-    for job in pending:
-        same = out and out[-1][0].args["scene"] == job.args["scene"] and out[-1][0].args["against"] == job.args["against"]
-        if same and len(out[-1]) < size:
-            out[-1].append(job)
-        else:
-            out.append([job])
-    return out
+def _next_chunk(queue: deque, size: int) -> list[Job]:
+    """Take up to ``size`` jobs of one scene (and reference) from the front of ``queue``."""
+    chunk = [queue.popleft()]
+    scene = (chunk[0].args["scene"], chunk[0].args["against"])
+    while queue and len(chunk) < size and (queue[0].args["scene"], queue[0].args["against"]) == scene:
+        chunk.append(queue.popleft())
+    return chunk
 
 
 def _dispatch(pending: list[Job], store: Store, settings: RunSettings, slots: int, bar, progress: Progress) -> None:
@@ -368,11 +366,10 @@ def _dispatch(pending: list[Job], store: Store, settings: RunSettings, slots: in
     inflight: dict = {}
     cancelled: set = set()
     backstop = (BACKSTOP_FACTOR * settings.task_timeout) if settings.task_timeout else None
-    chunks = _chunks(pending, settings.chunk or chunk_size(len(pending), slots))
-    chunks.reverse()
-    while chunks or inflight:
-        while chunks and len(inflight) < slots:
-            chunk = chunks.pop()
+    queue = deque(pending)
+    while queue or inflight:
+        while queue and len(inflight) < slots:
+            chunk = _next_chunk(queue, settings.chunk or chunk_size(len(queue), slots))
             args = [{**job.args, "store": str(store.root), "key": job.key, "row": job.row, "attempt": job.attempt,
                      "timeout": settings.task_timeout, "memory_mb": settings.task_memory_mb,
                      "images": settings.images} for job in chunk]
@@ -383,7 +380,7 @@ def _dispatch(pending: list[Job], store: Store, settings: RunSettings, slots: in
             ready, _ = ray.wait(refs, num_returns=len(refs), timeout=0)
         for ref in ready:
             chunk, _t0 = inflight.pop(ref)
-            statuses = _collect(ref, chunk, store, settings, ref in cancelled, chunks, progress)
+            statuses = _collect(ref, chunk, store, settings, ref in cancelled, queue, progress)
             for status in statuses:
                 progress.counts[status] += 1
                 progress.computed += 1
@@ -400,10 +397,10 @@ def _dispatch(pending: list[Job], store: Store, settings: RunSettings, slots: in
                     cancelled.add(ref)
 
 
-def _collect(ref, chunk: list[Job], store: Store, settings: RunSettings, cancelled: bool, chunks: list,
+def _collect(ref, chunk: list[Job], store: Store, settings: RunSettings, cancelled: bool, queue: deque,
              progress: Progress) -> list[str]:
     """The statuses of a finished chunk's jobs that are done (their records are in the store); the others
-    are queued again in ``chunks``: after a dead worker, the task that was running is retried or recorded
+    are queued again at the front of ``queue``: after a dead worker, the task that was running is retried or recorded
     (see the module docstring) and the ones after it are queued unchanged."""
     import ray
 
@@ -415,11 +412,11 @@ def _collect(ref, chunk: list[Job], store: Store, settings: RunSettings, cancell
         rest = [job for job, r in zip(chunk, records) if r is None]
         last = max((i for i, r in enumerate(records) if r is not None), default=None)
         if not rest or (last is not None and records[last].get("worker_ended")):
-            chunks.extend([rest] if rest else [])   # the task that ended its worker stored its own outcome
+            queue.extendleft(reversed(rest))   # the task that ended its worker stored its own outcome
             return done
         job, after = rest[0], rest[1:]
         if after:
-            chunks.append(after)
+            queue.extendleft(reversed(after))
         if cancelled:
             status, reason = "timeout", (f"no answer after {BACKSTOP_FACTOR:g} x --task-timeout "
                                          f"{settings.task_timeout:g} s + {BACKSTOP_SECONDS:g} s; its worker was killed")
@@ -428,7 +425,7 @@ def _collect(ref, chunk: list[Job], store: Store, settings: RunSettings, cancell
             log.warning("%s %s: its worker died (attempt %d); retrying", job.row["scene"], job.row["task"], job.attempt)
             job.attempt += 1
             progress.retried += 1
-            chunks.append([job])
+            queue.appendleft(job)
             return done
         elif isinstance(exc, ray.exceptions.OutOfMemoryError):
             status, reason = "error", f"killed by Ray's memory monitor (the node ran out of memory): {_first_line(exc)}"

@@ -246,3 +246,14 @@ def test_all_movable_records_a_joint_without_opening_range_as_unusable(kitchens,
     rows = {j.row["task"]: j.fixed for j in jobs}
     assert len(rows) == 7 and rows[DRAWER] is None
     assert rows[DOOR]["status"] == "unusable" and "no opening range" in rows[DOOR]["reason"]
+
+
+def test_chunks_are_guided_by_the_queue_and_keep_to_one_scene():
+    from collections import deque
+
+    from simcheck.batching.runner import MAX_CHUNK, Job, _next_chunk, chunk_size
+
+    assert chunk_size(1000, 2) == MAX_CHUNK and chunk_size(40, 2) == 5 and chunk_size(7, 2) == 1
+    queue = deque(Job(str(i), {}, {"scene": "a" if i < 3 else "b", "against": None}) for i in range(6))
+    assert [j.key for j in _next_chunk(queue, 5)] == ["0", "1", "2"]      # the scene ends the chunk
+    assert [j.key for j in _next_chunk(queue, 2)] == ["3", "4"] and len(queue) == 1
