@@ -84,7 +84,10 @@ def test_two_scene_manifest_end_to_end(kitchens, local_ray, tmp_path):
     assert (again.computed, again.resumed, again.newly_failing) == (0, 4, [])
 
 
-def test_faults_stay_local_to_their_task(kitchens, local_ray, tmp_path, monkeypatch):
+@pytest.mark.parametrize("chunk", [None, 4])
+def test_faults_stay_local_to_their_task(kitchens, local_ray, tmp_path, monkeypatch, chunk):
+    """Faults, one task per Ray task (the guided size for 4 tasks) or all four in one: a segfault blames
+    only the task that was running (retried once, then recorded); the tasks after it run once."""
     monkeypatch.setenv("SIMCHECK_BATCH_TEST_FAULTS", "1")
     scene = str(kitchens / "k0/truth.urdf")
     manifest = _manifest(tmp_path / "m.jsonl", [
@@ -93,9 +96,10 @@ def test_faults_stay_local_to_their_task(kitchens, local_ray, tmp_path, monkeypa
         {"scene": scene, "tasks": [DOOR], "_fault": "raise", "seed": 1},
         {"scene": scene, "tasks": [DOOR], "_fault": "memory", "seed": 3},
     ])
-    result = simcheck.batch(manifest, tmp_path / "out", workers=2, task_memory=1500, retries=1, progress=False)
+    result = simcheck.batch(manifest, tmp_path / "out", workers=2, task_memory=1500, retries=1, progress=False,
+                            chunk=chunk)
     rows = {(r["line"]): r for r in result.rows}
-    assert rows[1]["status"] == "certified"
+    assert rows[1]["status"] == "certified" and rows[1]["attempts"] == 1
     assert rows[2]["status"] == "error" and rows[2]["attempts"] == 2 and "worker died" in rows[2]["reason"]
     assert rows[3]["status"] == "error" and rows[3]["attempts"] == 1 and "test fault" in rows[3]["reason"]
     assert rows[4]["status"] == "error" and "--task-memory 1500" in rows[4]["reason"]
@@ -106,24 +110,6 @@ def test_faults_stay_local_to_their_task(kitchens, local_ray, tmp_path, monkeypa
     result = simcheck.batch(hang, tmp_path / "out", workers=2, task_timeout=2, progress=False)
     assert result.rows[0]["status"] == "timeout" and "--task-timeout 2" in result.rows[0]["reason"]
     assert result.exit_code == 1
-
-
-def test_a_worker_death_in_a_chunk_retries_only_the_running_task(kitchens, local_ray, tmp_path, monkeypatch):
-    """Three tasks of one scene in one Ray task: the second segfaults its worker; the first stays done,
-    the second is retried alone (then recorded), the third runs once."""
-    monkeypatch.setenv("SIMCHECK_BATCH_TEST_FAULTS", "1")
-    scene = str(kitchens / "k0/truth.urdf")
-    manifest = _manifest(tmp_path / "m.jsonl", [
-        {"scene": scene, "tasks": [DRAWER]},
-        {"scene": scene, "tasks": [DOOR], "_fault": "segfault"},
-        {"scene": scene, "tasks": [DOOR], "_fault": "raise", "seed": 1},
-    ])
-    result = simcheck.batch(manifest, tmp_path / "out", workers=1, retries=1, progress=False, chunk=3)
-    rows = {(r["line"]): r for r in result.rows}
-    assert rows[1]["status"] == "certified" and rows[1]["attempts"] == 1
-    assert rows[2]["status"] == "error" and rows[2]["attempts"] == 2 and "worker died" in rows[2]["reason"]
-    assert rows[3]["status"] == "error" and rows[3]["attempts"] == 1 and "test fault" in rows[3]["reason"]
-    assert result.retried == 1
 
 
 def test_malformed_entry_exits_2_naming_line_and_field(kitchens, tmp_path, capsys):
