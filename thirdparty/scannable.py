@@ -15,11 +15,14 @@ import dataclasses
 
 import numpy as np
 
-from scenes.description import JointType, Shape, ShapeKind, read_urdf
+from pathlib import Path
+from xml.etree import ElementTree as ET
+
+from scenes.description import JointType, Shape, ShapeKind, joint_name, read_urdf
 from scenes.model import ArticulatedObject, Joint, Part, Scene
 from thirdparty.build import BuiltObject
 
-__all__ = ["scene_of", "SCANNED_CATEGORY"]
+__all__ = ["scene_of", "reference_named_as_scan", "SCANNED_CATEGORY"]
 
 #: corpus categories as the scanner's labels.json names them (recon understands these)
 SCANNED_CATEGORY = {"cabinet": "cabinet", "wall_cabinet": "cabinet", "microwave": "microwave",
@@ -76,3 +79,24 @@ def scene_of(built: BuiltObject, object_id: int = 1, name: str | None = None) ->
     obj = ArticulatedObject(object_id, SCANNED_CATEGORY.get(built.spec.category, "cabinet"), tuple(parts),
                             tuple(joints), ())
     return Scene(name or built.spec.name, 0, (obj,), (), np.array([6.0, 6.0])), joint_part
+
+
+def reference_named_as_scan(built: BuiltObject, scene: Scene, joint_part: dict, out) -> tuple[Path, dict]:
+    """Write a copy of ``built.urdf`` to ``out`` with each front's joint renamed to the name ``recon`` gives the
+    joint of the same part (``cabinet1_door12_joint``), so a reconstruction of ``scene``'s scan can be
+    certified ``--against`` the third-party file itself (joints are matched by name). Returns (the path,
+    {the file's joint name: the new name}). Geometry, frames and limits are unchanged."""
+    obj = scene.objects[0]
+    names = {j: joint_name(obj.category, obj.id, obj.part(pid).label, pid) for j, pid in joint_part.items()}
+    tree = ET.parse(built.urdf)
+    for el in tree.getroot().iter("joint"):
+        if el.get("name") in names:
+            el.set("name", names[el.get("name")])
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    for el in tree.getroot().iter("mesh"):       # meshes stay where the corpus wrote them
+        f = Path(el.get("filename"))
+        if not f.is_absolute():
+            el.set("filename", str((built.urdf.parent / f).resolve()))
+    tree.write(out, encoding="unicode", xml_declaration=True)
+    return out, names

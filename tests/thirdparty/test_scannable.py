@@ -10,7 +10,7 @@ import thirdparty
 from scenes.description import read_urdf
 from scenes.scanner import scan_scene
 from scenes.scanner.params import params_for_preset
-from thirdparty.scannable import scene_of
+from thirdparty.scannable import reference_named_as_scan, scene_of
 
 
 @pytest.mark.parametrize("name", ["kitchen_unit_double_door", "dresser_six", "wall_flap", "microwave_continuous"])
@@ -36,3 +36,14 @@ def test_a_scan_labels_the_body_every_front_and_every_handle(tmp_path):
     assert sorted(labels.values()) == ["body", "door", "drawer", "handle", "handle"]
     seen = scan.counts_by_part()
     assert all(seen.get(pid, 0) > 20 for pid in labels), (seen, labels)
+
+
+def test_the_reference_renamed_as_the_scan_names_its_joints_and_moves_alike(tmp_path):
+    o = thirdparty.build_object(thirdparty.spec_named("kitchen_unit_double_door"), tmp_path)
+    scene, joint_part = scene_of(o)
+    path, names = reference_named_as_scan(o, scene, joint_part, tmp_path / "ref" / "reference.urdf")
+    assert names == {"joint_1": "cabinet1_door12_joint", "joint_2": "cabinet1_door14_joint"}
+    a, b = read_urdf(o.urdf), read_urdf(path)
+    for old, new in names.items():
+        assert np.allclose(a.T_world_link(a.joints[old].child, {old: -0.5}),
+                           b.T_world_link(b.joints[new].child, {new: -0.5}))
