@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from scenes.description import JointType, SceneModel, read_urdf, write_urdf
+from scenes.description import JointType, Limit, SceneModel, read_urdf, write_urdf
 from simcheck.estimate_faults import _move_joint_keep_geometry
 
 __all__ = ["WRONG_KINDS", "wrong_estimate"]
@@ -73,10 +73,10 @@ def wrong_estimate(src, joint: str, kind: str, out) -> Path:
         a_new = Rotation.from_rotvec(np.deg2rad(30.0) * about / np.linalg.norm(about)).apply(a)
         new = [dataclasses.replace(j, axis=R.T @ a_new)]
     elif kind == "door_as_drawer" and door:
-        sign = 1.0 if j.limit.upper - 0.0 >= 0.0 - j.limit.lower else -1.0
+        sign = 1.0 if j.upper >= -j.lower else -1.0          # a continuous joint opens positive
         d = sign * np.cross(a, _far_offset(m, joint))
-        new = [dataclasses.replace(j, type=JointType.PRISMATIC, axis=R.T @ (d / np.linalg.norm(d)),
-                                   limit=dataclasses.replace(j.limit, lower=0.0, upper=0.3))]
+        limit = Limit(0.0, 0.3, 100.0, 1.0) if j.limit is None else dataclasses.replace(j.limit, lower=0.0, upper=0.3)
+        new = [dataclasses.replace(j, type=JointType.PRISMATIC, axis=R.T @ (d / np.linalg.norm(d)), limit=limit)]
     elif kind == "wrong_hinge_side" and door:
         shift = R.T @ _far_offset(m, joint)
         new = _move_joint_keep_geometry(m, j, shift, axis=-j.axis)
