@@ -147,9 +147,10 @@ class CriteriaConfig:
         plan_penetration_tolerance: penetration depth, metres, above which a state of the densely
             interpolated plan counts as colliding in the independent PyBullet re-check.
         recheck_resolution: maximum joint step, rad or m, between re-checked states of the plan.
-        max_waypoint_gap: a given plan's largest joint step between consecutive waypoints, rad or m (0.1:
-            a trajectory controller interpolates between waypoints itself; farther apart, the path between
-            them would be the controller's, not the plan's). Planner plans are sampled at 0.02.
+        max_waypoint_gap: a given plan's largest joint step between consecutive waypoints, rad or m (a
+            trajectory controller interpolates between waypoints itself; farther apart, the path between
+            them is the controller's, not the plan's; our own planner's plans stay below it:
+            docs/decisions.md, "Given plans").
         acceleration_window: seconds over which a given plan's joint accelerations are measured (the
             second difference of its piecewise-linear path; a corner or a start at speed counts as the
             velocity change spread over this window).
@@ -173,7 +174,7 @@ class CriteriaConfig:
     joint_limit_tolerance: float = 0.01
     plan_penetration_tolerance: float = 0.005
     recheck_resolution: float = 0.02
-    max_waypoint_gap: float = 0.1
+    max_waypoint_gap: float = 0.15
     acceleration_window: float = 0.1
     articulation_tolerance: float = 0.01
     rest_contact_slack: float = 0.003

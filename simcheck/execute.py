@@ -391,7 +391,9 @@ def _targets(seg: Segment, vmax: np.ndarray, config: PhysicsConfig):
     """Every control step's robot target along ``seg``: (step numbers k (m,), q (m, dof), qd (m, dof),
     planned tool position (m, 3) or None, planned object q (m,) or None), and the step count.
 
-    A segment with its own times (``seg.t``, a given plan) is interpolated at them as they are. Otherwise
+    A segment with its own times (``seg.t``, a given plan) is interpolated at them as they are (feed-forward
+    velocity: the slope of the straight piece, at a waypoint's own time the slope between its neighbours, 0
+    at the last waypoint). Otherwise
     the segment is time-parametrised by :func:`timed_waypoints`, then ramped (:func:`_ramped`, over
     ``ramp_time``: a real arm's acceleration is bounded, and a part grasped and jerked to speed in one step
     would take an impulse no gripper transmits); targets are linear interpolations between waypoints at
@@ -417,6 +419,13 @@ def _targets(seg: Segment, vmax: np.ndarray, config: PhysicsConfig):
     a = ((tk - times[j]) / span)[:, None]
     q = (1 - a) * seg.q[j] + a * seg.q[j + 1]
     qd = (seg.q[j + 1] - seg.q[j]) / span[:, None] * rate[:, None]
+    if seg.t is not None:
+        # a given plan: at a waypoint's own time the velocity is the slope between its neighbours (exact for a
+        # path sampled from a smooth one), at the last waypoint 0 (the robot stops there)
+        at = np.isclose(tk, times[j], rtol=0.0, atol=1e-12) & (j > 0)
+        jj = j[at]
+        qd[at] = (seg.q[jj + 1] - seg.q[jj - 1]) / (times[jj + 1] - times[jj - 1])[:, None]
+        qd[tk >= times[-1] - 1e-12] = 0.0
     tool_k = (1 - a) * tool[j] + a * tool[j + 1] if tool is not None else None
     obj_k = ((1 - a[:, 0]) * seg.object_q[j] + a[:, 0] * seg.object_q[j + 1]) if seg.object_q is not None else None
     return k, q, qd, tool_k, obj_k, n_steps

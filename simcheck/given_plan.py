@@ -30,7 +30,7 @@ from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, P
 from simcheck.errors import PlanFileError
 from simcheck.plan_file import GivenPlan, read_plan
 
-__all__ = ["certify_plan", "bind_plan", "given_planner", "given_from_result", "given_criteria", "plan_path",
+__all__ = ["certify_plan", "bind_plan", "followed_values", "given_planner", "given_from_result", "given_criteria", "plan_path",
            "START_TOLERANCE"]
 
 log = logging.getLogger(__name__)
@@ -69,7 +69,7 @@ def bind_plan(given: GivenPlan, robot, scene_joints: dict, scene) -> list[PlanRe
     scene whose joints are ``scene_joints`` (name -> joint with ``type``, from
     :func:`simcheck.scene_joints.read_scene_joints` of ``scene``): columns in the robot's joint order, tool
     poses by forward kinematics (``tool_positions`` of the file kept), the expected joint's planned value
-    interpolated in time over its segment.
+    following the tool over its segment (:func:`followed_values`; ``e.start`` before, its last value after).
 
     Raises:
         PlanFileError: naming the plan file and the field (see the module docstring).
@@ -94,19 +94,35 @@ def bind_plan(given: GivenPlan, robot, scene_joints: dict, scene) -> list[PlanRe
     plans = []
     for i, e in given.expectations:
         segs = []
-        value = e.start
+        moved = followed_values(segments[i].T_world_tool[:, :3, 3], scene_joints[e.joint], e)
         for k, s in enumerate(segments):
-            if k == i:
-                obj = e.start + e.amount * s.t / s.t[-1] if s.t[-1] > 0 else np.full(len(s.t), e.end)
-                value = e.end
-            else:
-                obj = np.full(len(s.t), value if k > i else e.start)
+            obj = moved if k == i else np.full(len(s.t), moved[-1] if k > i else e.start)
             segs.append(dataclasses.replace(s, object_q=obj))
         kind = OPENING_KINDS[str(getattr(scene_joints[e.joint].type, "value", scene_joints[e.joint].type))]
         task = OpenTask(kind, e.joint, e.amount)
         plans.append(PlanResult(PlanStatus.OK, f"given plan {src}, segment {given.segments[i].name!r}", task,
                                 robot_names, tuple(segs), amount=e.amount, start_object_q=e.start, method="given"))
     return plans
+
+
+def followed_values(p_world_tool: np.ndarray, joint, e) -> np.ndarray:
+    """(n,) the values, m or rad, of the expected joint ``joint`` (with ``type``, ``axis_world`` (3,) and
+    ``origin_world`` (3,), world frame) if its part follows the tool positions ``p_world_tool`` (n, 3) of the
+    expectation's segment from ``e.start``: the tool's displacement along the axis (prismatic) or its turn
+    about the axis line (revolute), kept between ``e.start`` and ``e.end``. The planned state of the part the
+    collision re-check sets while the robot holds it (a grasped part moves with the hand)."""
+    p = np.asarray(p_world_tool, dtype=float)
+    axis = np.asarray(joint.axis_world, dtype=float)
+    axis = axis / np.linalg.norm(axis)
+    if str(getattr(joint.type, "value", joint.type)) == "prismatic":
+        delta = (p - p[0]) @ axis
+    else:
+        v = p - np.asarray(joint.origin_world, dtype=float)
+        v = v - np.outer(v @ axis, axis)                                  # in the plane normal to the axis
+        step = np.arctan2(np.cross(v[:-1], v[1:]) @ axis, np.einsum("ij,ij->i", v[:-1], v[1:]))
+        delta = np.concatenate([[0.0], np.cumsum(step)])
+    lo, hi = min(e.start, e.end), max(e.start, e.end)
+    return np.clip(e.start + delta, lo, hi)
 
 
 class _GivenPlanner:
