@@ -21,7 +21,8 @@ PURE = ("scenes", "recon", "planners", "simcheck",
         "simcheck.criteria", "simcheck.certificate", "simcheck.config", "simcheck.errors",
         "simcheck.scene_joints", "simcheck.rollout", "simcheck.estimate_diff", "simcheck.scenario",
         "simcheck.scene_bodies", "simcheck.bullet_poses", "simcheck.joint_table", "simcheck.contacts",
-        "simcheck.grasp_spring")
+        "simcheck.grasp_spring", "simcheck.plan_file", "simcheck.plan_adapters", "simcheck.plan_timing",
+        "simcheck.plan_expectations")
 #: modules that exist once the shared scene description has landed
 LATER = ()
 CLIS = ("scenes.cli", "recon.cli", "simcheck.cli")
