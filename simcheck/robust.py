@@ -56,8 +56,8 @@ class _PlanKeeper:
 
 def _pivot_xy(plan) -> tuple[float, float]:
     """Where the robot stands while it opens: base (x, y) -- the plan's first two joints -- at the start of
-    its "open" segment (else of its first segment)."""
-    seg = next((s for s in plan.segments if s.name == "open"), plan.segments[0])
+    its opening segment (``plan.opening_segment``; else of its first segment)."""
+    seg = next((s for s in plan.segments if s.name == plan.opening_segment), plan.segments[0])
     q = np.asarray(seg.q, dtype=float)
     return float(q[0, 0]), float(q[0, 1])
 

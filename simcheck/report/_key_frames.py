@@ -31,7 +31,7 @@ CLEARANCE = 0.3
 
 def key_frame_indices(rollout: Rollout) -> list[tuple[str, int]]:
     """``(caption, sample index)``: grasp (start of the open segment), half-way, end of opening, end."""
-    open_idx = np.flatnonzero(rollout.in_segment("open"))
+    open_idx = np.flatnonzero(rollout.in_segment(rollout.opening_segment))
     picks: list[tuple[str, int]] = [("start", 0)]
     if len(open_idx):
         picks += [("grasped", int(open_idx[0])), ("opening", int(open_idx[len(open_idx) // 2])),
