@@ -234,6 +234,8 @@ class Session:
                           for b in blockers if b not in self.scene_links]
             hints += [f"scene link {b} blocked {task.joint}" for b in blockers if b in self.scene_links]
             reason = (f"{'; '.join(hints)} -- evidence: {evidence}" if hints else evidence)
+        if plan.method == "given":                # say whose plan was judged: "given plan FILE, segment 'open'"
+            reason = f"{plan.reason}: {reason}"
         return TaskCertificate(task.action, task.joint, status, reason, float(plan.amount), unit, tuple(crit), seed,
                                timings, rollout or "", tuple(images), plan_status="OK")
 
