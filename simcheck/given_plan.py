@@ -5,16 +5,18 @@
 How a given plan is judged: the robot is placed at the plan's first waypoint (the only jump, at t = 0), then
 the plan is executed as given -- its times, its gripper commands, tracked by the robot's controllers, no
 replanning (:func:`simcheck.execute.execute_task` on its timed segments) -- re-checked densely for
-collisions (:func:`simcheck.plan_recheck.recheck_plan`) and judged, once per expectation, by the criteria of
+collisions (:func:`simcheck.plan_recheck.recheck_plan`) and judged by the criteria of
 a planned task (the expectation's segment playing the opening, the next segment that opens the gripper the
 release) plus: the expectation met by the end of its segment, every other articulation left where it was
 (:mod:`simcheck.plan_expectations`), and the plan's timing within the robot's limits
-(:mod:`simcheck.plan_timing`). Each expectation is a task of the certificate, executed in freshly loaded
-worlds (a scenario carries the world from plan to plan instead).
+(:mod:`simcheck.plan_timing`). The expectation is the task of the certificate (a scenario chains plans, the
+world carried from one to the next).
 
 The binding of a plan to the robot and the scene (:func:`bind_plan`) refuses with exit 2, naming the field: a
 joint the robot lacks or a robot joint the plan lacks, an expectation naming no movable scene joint, a plan
-without expectation, and in a scenario a first waypoint away from where the robot is.
+without expectation or with more than one (the format allows several; the collision re-check and the contact
+criteria know one held part, so this version certifies one opening per plan), and in a scenario a first
+waypoint away from where the robot is.
 """
 
 from __future__ import annotations
@@ -61,6 +63,11 @@ def _check_robot_joints(given: GivenPlan, robot) -> tuple[str, ...]:
     if not given.expectations:
         raise PlanFileError(f"plan {src}: no segment has an 'expect': nothing to certify (say which joint a "
                             "segment should move, e.g. {\"joint\": J, \"from\": 0.0, \"to\": 0.3})")
+    if len(given.expectations) > 1:
+        where = ", ".join(f"segments[{i}] ({given.segments[i].name!r})" for i, _ in given.expectations)
+        raise PlanFileError(f"plan {src}: {where} each have an 'expect': this partscene certifies one opening per "
+                            "plan (the collision re-check and the contact criteria know one held part); give one "
+                            "plan per opening and chain them in a scenario ({plan: FILE} entries)")
     return robot_names
 
 
@@ -162,8 +169,8 @@ def certify_plan(scene, plan, *, against=None, out=None, robot=None, seed: int =
                  criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
                  images: bool = True, video: bool = False, gui: bool = False):
     """Certify the given ``plan`` (a plan file path, or a :class:`GivenPlan` from
-    :func:`simcheck.plan_file.plan_from_arrays`) on ``scene``; returns the :class:`Certificate`, one task per
-    expectation (written to ``out`` if given).
+    :func:`simcheck.plan_file.plan_from_arrays`) on ``scene``; returns the :class:`Certificate`, its task the
+    plan's expectation (written to ``out`` if given).
 
     Args:
         against: a reference URDF to execute on instead of ``scene``.

@@ -79,6 +79,11 @@ def test_binding_names_a_joint_the_robot_lacks_or_the_plan_lacks():
             del row[5]
     with pytest.raises(PlanFileError, match="'joint_names' lacks robot joint 'panda_joint3'"):
         bind_plan(plan_from_dict(doc, "doc"), robot, {}, "scene.urdf")
+    doc = _doc()
+    doc["segments"][0]["expect"] = {"joint": "cabinet1_door4_joint", "from": 0.0, "to": 1.0}
+    with pytest.raises(PlanFileError, match=r"segments\[0\] \('approach'\), segments\[1\] \('open'\) each have an "
+                                            r"'expect': this partscene certifies one opening per plan"):
+        bind_plan(plan_from_dict(doc, "doc"), robot, {}, "scene.urdf")
     with pytest.raises(PlanFileError, match=r"'segments\[1\].expect.joint': scene joint 'cabinet1_drawer2_joint' of "
                                             r"scene.urdf does not exist"):
         bind_plan(plan_from_dict(_doc(), "doc"), robot, {}, "scene.urdf")
