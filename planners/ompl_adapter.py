@@ -66,6 +66,12 @@ def plan_joint_path(start: np.ndarray, goal: np.ndarray, lower: np.ndarray, uppe
     """
     dof = len(start)
     t0 = time.perf_counter()
+    for what, q in (("start", start), ("goal", goal)):
+        outside = np.flatnonzero((np.asarray(q) < lower) | (np.asarray(q) > upper))
+        if len(outside):
+            i = int(outside[0])
+            return MotionResult(False, np.zeros((0, dof)), f"the {what} lies outside the planning box: coordinate "
+                                f"{i} = {q[i]!r} not in [{lower[i]!r}, {upper[i]!r}]", time.perf_counter() - t0)
     space = _seeded_box_space(seed, lower, upper)
     ss = og.SimpleSetup(space)
     buf = np.empty(dof)

@@ -25,7 +25,11 @@ from planners.robot import RobotSpec
 from planners.scene_urdf import read_scene_urdf
 from scenes.description import SceneModel
 
-__all__ = ["PlanningWorld", "RobotKinematics"]
+__all__ = ["LIMIT_TOLERANCE", "PlanningWorld", "RobotKinematics"]
+
+#: how far (rad or m) a configuration may lie beyond a joint limit and still count as within it: a robot
+#: executed in physics rests on a limit up to rounding (a scenario's next task starts there)
+LIMIT_TOLERANCE = 1e-9
 
 log = logging.getLogger(__name__)
 
@@ -291,7 +295,8 @@ class PlanningWorld:
         return float(best)
 
     def within_limits(self, q: np.ndarray) -> bool:
-        return bool(np.all(q >= self.robot.lower - 1e-9) and np.all(q <= self.robot.upper + 1e-9))
+        """Whether ``q (dof,)`` lies within the robot's joint limits, up to :data:`LIMIT_TOLERANCE`."""
+        return bool(np.all(q >= self.robot.lower - LIMIT_TOLERANCE) and np.all(q <= self.robot.upper + LIMIT_TOLERANCE))
 
     def moving_link_pose(self, s: float) -> np.ndarray:
         """``(4, 4)`` world pose of the task joint's child link at joint value ``s``."""

@@ -23,7 +23,7 @@ from planners.ik import solve_ik
 from planners.motion import TrackResult, densify, first_invalid, track_poses
 from planners.opening import plan_opening_constrained
 from planners.ompl_adapter import plan_joint_path
-from planners.pin_world import PlanningWorld, RobotKinematics
+from planners.pin_world import LIMIT_TOLERANCE, PlanningWorld, RobotKinematics
 from planners.robot import RobotSpec
 from planners.scene_urdf import read_scene_urdf
 from planners.stand import StandPose, find_stand_poses
@@ -282,7 +282,13 @@ def _start_configuration(world, spec, stand: StandPose, start, cfg, s0):
             raise PlannerInputError(f"start configuration must have {spec.dof} values ({', '.join(spec.joint_names)}), "
                                     f"got shape {q.shape}")
         if not world.within_limits(q):
-            return PlanStatus.START_IN_COLLISION, "start configuration outside the robot's joint limits"
+            out = np.flatnonzero((q < world.robot.lower - LIMIT_TOLERANCE) | (q > world.robot.upper + LIMIT_TOLERANCE))
+            i = int(out[0])
+            return PlanStatus.START_IN_COLLISION, (
+                f"start configuration outside the robot's joint limits: {spec.joint_names[i]} = {q[i]:.6g} not in "
+                f"[{world.robot.lower[i]:.6g}, {world.robot.upper[i]:.6g}]")
+        # a start resting on a limit up to rounding (physics) is moved onto it: the planner's box holds it
+        q = np.clip(q, world.robot.lower, world.robot.upper)
         if world.in_collision(q, s0, False):
             return PlanStatus.START_IN_COLLISION, "start configuration in collision"
         return q

@@ -150,13 +150,15 @@ def test_a_part_collapsed_to_a_point_is_a_warning_and_a_skipped_part():
 
 # --- scene URDF cases: read_urdf / the planner raise an InputError naming the link or joint ------------
 
-def _urdf(tmp: Path, link="drawer", joint="drawer_joint", upper=0.4) -> Path:
+def _urdf(tmp: Path, link="drawer", joint="drawer_joint", upper=0.4, mass="1", ixx="0.1") -> Path:
     box = '<collision><geometry><box size="0.4 0.5 0.2"/></geometry></collision>'
     inertial = '<inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>'
+    moving = (f'<inertial><mass value="{mass}"/><inertia ixx="{ixx}" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/>'
+              '</inertial>')
     text = f"""<robot name="s">
   <link name="world"/>
   <link name="body">{inertial}{box}</link>
-  <link name="{link}">{inertial}{box}</link>
+  <link name="{link}">{moving}{box}</link>
   <joint name="body_joint" type="fixed"><parent link="world"/><child link="body"/></joint>
   <joint name="{joint}" type="prismatic"><parent link="body"/><child link="{link}"/>
     <origin xyz="-0.3 0 0.5"/><axis xyz="-1 0 0"/><limit lower="0" upper="{upper}" effort="10" velocity="1"/></joint>
@@ -194,20 +196,18 @@ def _huge_negative_drawer(tmp):
     plan_open_task(None, tmp / "scene.urdf", parse_task("open-drawer:drawer_joint"))
 
 
-def _massless_drawer(tmp):
-    from scenes.description import read_urdf
-    text = _urdf(tmp).read_text()
-    i = text.index('<link name="drawer">')
-    read_urdf(_write_text(tmp / "scene.urdf", text[:i] + text[i:].replace('<mass value="1"/>', '<mass value="0"/>', 1)))
-
-
-def _write_text(path, text):
-    path.write_text(text)
-    return path
+def _read_drawer(**kw):
+    def case(tmp):
+        from scenes.description import read_urdf
+        read_urdf(_urdf(tmp, **kw))
+    return case
 
 
 SCENE_CASES = {
-    "drawer-mass-0": (_massless_drawer, r"link 'drawer' \(child of prismatic joint 'drawer_joint'\) has mass 0"),
+    "drawer-mass-0": (_read_drawer(mass="0"), r"link 'drawer' \(child of prismatic joint 'drawer_joint'\) has mass 0"),
+    "drawer-inertia-nan": (_read_drawer(ixx="nan"), r"link 'drawer' inertia: expected finite numbers"),
+    "drawer-inertia-negative": (_read_drawer(ixx="-1"), r"link 'drawer' \(child of prismatic joint 'drawer_joint'\) "
+                                r"has an inertia that has principal moment -1 kg m\^2"),
     "drawer-lower-minus-1e6-m": (_huge_negative_drawer, r"joint 'drawer_joint': opening by -.* m is beyond"),
     "link-name-3000-chars": (_long_link, r"scene.urdf: link 'ddd.*has a name of 3000 characters \(at most 255\)"),
     "joint-name-2100-chars": (_long_joint, r"scene.urdf: joint 'jjj.*has a name of 2100 characters"),
@@ -226,6 +226,8 @@ def test_scene_inputs_raise_a_named_input_error(case, tmp_path):
 SIMCHECK_CASES = {
     "link-name-3000-chars": (dict(link="d" * 3000), r"link 'ddd.*has a name of 3000 characters"),
     "drawer-upper-1e6-m": (dict(upper=1e6), r"joint 'drawer_joint': opening by .* m is beyond the physical bound"),
+    "drawer-mass-0": (dict(mass="0"), r"link 'drawer' \(child of prismatic joint 'drawer_joint'\) has mass 0"),
+    "drawer-inertia-nan": (dict(ixx="nan"), r"link 'drawer' inertia: expected finite numbers"),
 }
 
 

@@ -222,8 +222,27 @@ def _parse_urdf(path: Path, data: bytes) -> SceneModel:
                 not child.inertial.mass > 0:
             raise DescriptionError(f"{where}: link {j.child!r} (child of {j.type.value} joint {j.name!r}) has mass "
                                    f"{child.inertial.mass:g}; a moving link needs a positive mass")
+        if j.type.value != "fixed" and child is not None and child.inertial is not None:
+            problem = _inertia_problem(child.inertial.inertia)
+            if problem:
+                raise DescriptionError(f"{where}: link {j.child!r} (child of {j.type.value} joint {j.name!r}) has an "
+                                       f"inertia that {problem}; a moving link needs a physical inertia tensor")
     materials = tuple(_material(yourdfpy.URDF._parse_material(m)) for m in root.findall("material"))
     return SceneModel(root.get("name", ""), links, joints, materials, path)
+
+
+def _inertia_problem(inertia: np.ndarray) -> str:
+    """What is unphysical about ``inertia`` ((3, 3), kg m^2, about the centre of mass), or "" if nothing: the
+    tensor must be symmetric (up to a relative 1e-6) with positive principal moments. (The triangle
+    inequality is not required: PyBullet and MuJoCo simulate hand-written tensors that break it.)"""
+    inertia = np.asarray(inertia, float)
+    scale = max(float(np.abs(inertia).max()), 1e-300)
+    if not np.allclose(inertia, inertia.T, rtol=0.0, atol=1e-6 * scale):
+        return "is not symmetric"
+    smallest = float(np.linalg.eigvalsh(0.5 * (inertia + inertia.T))[0])
+    if not smallest > 0:
+        return f"has principal moment {smallest:.3g} kg m^2 (must be > 0)"
+    return ""
 
 
 # ---------------------------------------------------------------------------------------------- writing

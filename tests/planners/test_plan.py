@@ -120,6 +120,33 @@ def test_given_start_is_the_first_approach_sample(robot, fixture_urdf):
     assert np.allclose(plan.segment("approach").q[0], start)
 
 
+def test_a_start_resting_on_a_joint_limit_up_to_rounding_is_planned_from(robot, fixture_urdf):
+    # a scenario's next task starts where physics left the robot: a joint on its limit up to rounding
+    kin = RobotKinematics(robot)
+    start = robot.q_with_base(robot.home_q, 0.0, 0.0, 0.0)
+    start[-1] = kin.upper[-1] + 5e-10          # the wrist joint, past its upper limit by 5e-10 rad
+    plan = plan_open_task(robot, fixture_urdf, OpenTask("drawer", DRAWER), seed=2, start=start)
+    assert plan.ok, plan.reason               # was: NO_PATH "RRTConnect ... (Invalid start)"
+    assert np.allclose(plan.segment("approach").q[0], start, atol=1e-9)
+
+
+def test_a_start_beyond_a_joint_limit_names_the_joint(robot, fixture_urdf):
+    kin = RobotKinematics(robot)
+    start = robot.q_with_base(robot.home_q, 0.0, 0.0, 0.0)
+    start[-1] = kin.upper[-1] + 0.01
+    plan = plan_open_task(robot, fixture_urdf, OpenTask("drawer", DRAWER), seed=2, start=start)
+    assert plan.status is PlanStatus.START_IN_COLLISION
+    assert f"{robot.joint_names[-1]} = " in plan.reason and "outside the robot's joint limits" in plan.reason
+
+
+def test_the_approach_planner_names_a_start_outside_its_box():
+    from planners.ompl_adapter import plan_joint_path
+
+    r = plan_joint_path(np.array([-1e-10, 0.5]), np.array([0.9, 0.9]), np.zeros(2), np.ones(2), lambda q: True,
+                        time_limit=0.2, seed=0)
+    assert not r.success and "the start lies outside the planning box: coordinate 0" in r.reason
+
+
 def test_default_amounts():
     assert default_amount("drawer", 0.0, 0.4, CFG) == pytest.approx(0.36)
     assert default_amount("door", 0.0, 1.0, CFG) == pytest.approx(0.9)
