@@ -2,8 +2,9 @@
 
 Exit codes (:func:`scenes.outcome.exit_code`): 0 written; 2 the input could not be used (the message
 says why); 1 a reconstruction stage could not produce a valid model (names the object, part or joint);
-3 an internal error (one line naming what failed; ``-v`` logs the traceback). Progress and warnings go to stderr; nothing is written unless every output
-could be produced (scene.urdf, graph.json, preview.png).
+3 an internal error (one line naming what failed; ``-v`` logs the traceback); 130 interrupted (Ctrl-C).
+Progress and warnings go to stderr. ``--out`` is written as a whole (:mod:`scenes.output_folder`): nothing
+is written unless every output could be produced (scene.urdf, scene.srdf, graph.json, preview.png, scene.xml).
 """
 
 from __future__ import annotations
@@ -12,9 +13,10 @@ import argparse
 import sys
 from pathlib import Path
 
-from recon.errors import ReconError, ScanError
-from scenes.command_line import root_parser, setup_logging
-from scenes.outcome import Outcome, exit_code, internal_error
+from recon.errors import ReconError
+from scenes.description import InputError
+from scenes.command_line import add_output_arguments, root_parser, setup_logging
+from scenes.outcome import Outcome, exit_code, internal_error, interrupted
 
 __all__ = ["main"]
 
@@ -26,7 +28,7 @@ def _parser() -> argparse.ArgumentParser:
                        parents=[common])
     b.add_argument("scan", type=Path, help="scan.ply or scan.npz (metres, z up unless --level-floor)")
     b.add_argument("--labels", type=Path, required=True, help="labels.json")
-    b.add_argument("--out", type=Path, required=True, help="output folder (created)")
+    add_output_arguments(b, "scene.urdf, scene.srdf, graph.json, preview.png, scene.xml")
     b.add_argument("--level-floor", action="store_true", help="find the floor and the up direction first")
     b.add_argument("--seed", type=int, default=0)
     b.add_argument("--no-preview", action="store_true", help="skip preview.png")
@@ -44,21 +46,30 @@ def main(argv: list[str] | None = None) -> int:
 
     try:
         from recon.config import ReconConfig
-        from recon.output import check_inputs_not_outputs, write_reconstruction
+        from recon.output import write_reconstruction
         from recon.pipeline import reconstruct_scan
         from recon.scan import read_scan
+        from scenes.output_folder import output_folder
 
-        check_inputs_not_outputs(args.out, (args.scan, args.labels))
-        config = ReconConfig()
-        scan = read_scan(args.scan, args.labels, config)
-        rec = reconstruct_scan(scan, config=config, level_floor=args.level_floor, seed=args.seed, progress=progress)
-        paths = write_reconstruction(rec, args.out, preview_scan=None if args.no_preview else scan, mjcf=args.mjcf)
-    except ScanError as exc:
+        settings = {"level_floor": args.level_floor, "seed": args.seed, "preview": not args.no_preview,
+                    "mjcf": args.mjcf}
+        with output_folder(args.out, "recon build", inputs={"scan": args.scan, "labels": args.labels},
+                           settings=settings, overwrite=args.overwrite) as staging:
+            config = ReconConfig()
+            scan = read_scan(args.scan, args.labels, config)
+            rec = reconstruct_scan(scan, config=config, level_floor=args.level_floor, seed=args.seed,
+                                   progress=progress)
+            written = write_reconstruction(rec, staging, preview_scan=None if args.no_preview else scan,
+                                           mjcf=args.mjcf)
+        paths = {name: Path(args.out) / name for name in written}
+    except InputError as exc:          # ScanError, OutputFolderError
         print(f"recon: error: {exc}", file=sys.stderr)
         return exit_code([Outcome.UNUSABLE])
     except ReconError as exc:
         print(f"recon: reconstruction failed: {exc}", file=sys.stderr)
         return exit_code([Outcome.FAILED])
+    except KeyboardInterrupt:
+        return interrupted("recon", args.out)
     except Exception as exc:
         return internal_error("recon", f"reconstructing {args.scan}", exc)
     if not args.quiet:

@@ -1,5 +1,7 @@
 """Write a reconstruction's files atomically: every file is rendered in memory first, then written to a
-temporary name in the output folder and renamed into place, so a failure leaves no half-written file."""
+temporary name in the output folder and renamed into place, so a failure leaves no half-written file.
+(``recon build`` writes them into a temporary folder that becomes ``--out`` as a whole:
+:mod:`scenes.output_folder`.)"""
 
 from __future__ import annotations
 
@@ -11,22 +13,7 @@ from recon.scene_srdf import srdf_string
 from recon.scene_urdf import urdf_string
 from scenes.description import write_bytes_atomic
 
-__all__ = ["OUTPUT_NAMES", "check_inputs_not_outputs", "write_reconstruction"]
-
-#: every file name :func:`write_reconstruction` may write into its output folder
-OUTPUT_NAMES = ("scene.urdf", "scene.srdf", "graph.json", "scene.xml", "preview.png")
-
-
-def check_inputs_not_outputs(out_dir, inputs) -> None:
-    """Refuse (:class:`recon.errors.ScanError`) an input file (scan, labels) that is one of the files the
-    reconstruction would write into ``out_dir``: writing would destroy it."""
-    from recon.errors import ScanError
-
-    targets = {(Path(out_dir) / name).resolve() for name in OUTPUT_NAMES}
-    for path in inputs:
-        if Path(path).resolve() in targets:
-            raise ScanError(f"{path}: this input is where recon writes its {Path(path).name} in --out {out_dir}; "
-                            "move the input or choose another --out")
+__all__ = ["write_reconstruction"]
 
 
 def write_reconstruction(rec: Reconstruction, out_dir, *, preview_scan=None, mjcf: bool = False) -> dict[str, Path]:

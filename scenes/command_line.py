@@ -19,7 +19,8 @@ import logging
 import sys
 from importlib.metadata import PackageNotFoundError, version
 
-__all__ = ["LOG_FORMAT", "package_version", "root_parser", "log_level", "setup_logging", "is_quiet"]
+__all__ = ["LOG_FORMAT", "package_version", "root_parser", "log_level", "setup_logging", "is_quiet",
+           "add_output_arguments"]
 
 #: the one log line format of the three tools (stderr): ``WARNING recon.joints: door hinge ...``
 LOG_FORMAT = "%(levelname)s %(name)s: %(message)s"
@@ -73,3 +74,14 @@ def setup_logging(args: argparse.Namespace) -> int:
     level = log_level(args)
     logging.basicConfig(level=level, format=LOG_FORMAT, stream=sys.stderr)
     return level
+
+
+def add_output_arguments(parser: argparse.ArgumentParser, what: str, default: str | None = None) -> None:
+    """Add ``--out DIR`` (required when ``default`` is None) and ``--overwrite`` to ``parser``: the output
+    folder is written as a whole (:mod:`scenes.output_folder`); ``what`` lists what goes into it."""
+    parser.add_argument("--out", default=default, required=default is None,
+                        help=f"output folder ({what}), written as a whole: a rerun with the same inputs replaces it; "
+                             "anything else in it is refused unless --overwrite" +
+                             (f" (default: {default})" if default else ""))
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace the whole content of --out, whatever it holds")

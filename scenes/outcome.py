@@ -24,7 +24,7 @@ import logging
 import sys
 from typing import Iterable
 
-__all__ = ["Outcome", "exit_code", "internal_error"]
+__all__ = ["Outcome", "exit_code", "internal_error", "interrupted", "INTERRUPTED_EXIT"]
 
 
 class Outcome(enum.StrEnum):
@@ -70,3 +70,15 @@ def internal_error(prog: str, what: str, exc: BaseException, log: logging.Logger
     sys.stderr.write(f"{prog}: internal error while {what}: {detail} (run with -v for the traceback)\n")
     (log or logging.getLogger(prog)).info("traceback of the internal error:", exc_info=exc)
     return exit_code([Outcome.ERROR])
+
+
+#: the exit code of a command stopped by Ctrl-C (128 + SIGINT, as shells report it)
+INTERRUPTED_EXIT = 130
+
+
+def interrupted(prog: str, out=None) -> int:
+    """Report a Ctrl-C and return :data:`INTERRUPTED_EXIT`: one line on stderr saying that nothing was
+    written to ``out`` (the output folder, left as it was) when it is given."""
+    where = f"; nothing was written, {out} is as it was" if out is not None else ""
+    sys.stderr.write(f"{prog}: interrupted{where}\n")
+    return INTERRUPTED_EXIT

@@ -9,6 +9,7 @@ software versions and timings. Written as ``certificate.json`` (atomically) and 
      "seeds": {"seed": 0}, "versions": {"pybullet": ..., "pinocchio": ..., "ompl": ..., "numpy": ..., "partscene": ...},
      "timings": {"total": s},
      "untested": {joint: "why it was not tested"},     (movable joints left out of an --all-movable run)
+     "files": {"scene": {"path": "...", "sha256": "..."}, "against": ..., "robot": ..., "robot_spec" | "scenario" | "plan": ...},
      "tasks": [{"kind": "open-drawer", "joint": "...", "status": "certified" | "failed" | "not_planned" | "unreachable" | ...,
                 "reason": "...", "amount": 0.31, "unit": "m", "seed": 0, "rollout": "rollouts/<joint>.npz",
                 "plan_status": "OK" | "NO_STAND_POSE" | ..., "start_state": {joint: value},
@@ -143,6 +144,10 @@ class Certificate:
     timings: dict = field(default_factory=dict)
     #: movable joints of the scene that were not tested (``--all-movable``), by name, with why
     untested: dict = field(default_factory=dict)
+    #: every file the certificate was judged on, by role ("scene", "against", "robot", "robot_spec",
+    #: "scenario", ...): ``{"path": as given (relative to the certificate's folder if inside it),
+    #: "sha256": hex digest of the content}``
+    files: dict = field(default_factory=dict)
     path: Path | None = None
 
     @property
@@ -181,7 +186,8 @@ class Certificate:
         return {"format": CERTIFICATE_FORMAT, "ok": self.ok, "scene": self.scene, "against": self.against,
                 "robot": self.robot, "criteria": dict(self.criteria), "seeds": dict(self.seeds),
                 "versions": dict(self.versions), "timings": dict(self.timings),
-                "untested": dict(self.untested), "tasks": [t.to_dict() for t in self.tasks]}
+                "untested": dict(self.untested), "files": {k: dict(v) for k, v in self.files.items()},
+                "tasks": [t.to_dict() for t in self.tasks]}
 
     @classmethod
     def from_dict(cls, d: dict, path: Path | None = None) -> "Certificate":
@@ -191,7 +197,8 @@ class Certificate:
         return cls(tasks=tuple(TaskCertificate.from_dict(t) for t in d["tasks"]), scene=d["scene"],
                    against=d.get("against"), robot=d.get("robot", ""), criteria=dict(d.get("criteria", {})),
                    seeds=dict(d.get("seeds", {})), versions=dict(d.get("versions", {})),
-                   timings=dict(d.get("timings", {})), untested=dict(d.get("untested", {})), path=path)
+                   timings=dict(d.get("timings", {})), untested=dict(d.get("untested", {})),
+                   files=dict(d.get("files", {})), path=path)
 
     def write(self, out_dir: str | Path) -> Path:
         """Write ``certificate.json`` into ``out_dir`` atomically; returns its path."""

@@ -259,6 +259,25 @@ def _safe(name: str) -> str:
     return f"{safe[:_STEM_LENGTH]}-{hashlib.sha1(name.encode()).hexdigest()[:8]}"
 
 
+def _recorded_path(path, out_dir: Path | None) -> str:
+    """``path`` as the certificate records it: relative to the certificate's folder when it lies inside it
+    (the folder may be renamed into place: ``scenes.output_folder``), else as given."""
+    if out_dir is not None:
+        try:
+            return str(Path(path).resolve().relative_to(Path(out_dir).resolve()))
+        except ValueError:
+            pass
+    return str(path)
+
+
+def certified_files(files: dict, out_dir: Path | None) -> dict:
+    """``{role: {"path": recorded path, "sha256": hex}}`` of the existing files in ``files`` (role -> path or None)."""
+    from scenes.output_folder import file_sha256
+
+    return {role: {"path": _recorded_path(p, out_dir), "sha256": file_sha256(p)}
+            for role, p in files.items() if p is not None and Path(p).is_file()}
+
+
 def _run_task(session: Session, task: OpenTask, planner: Callable, seed: int, criteria: CriteriaConfig,
               out_dir: Path | None, images: bool, video: bool, start, load_seconds: float | None) -> TaskCertificate:
     """Certify ``task`` in ``session``'s worlds as they are now; the certificate records the start state
@@ -282,7 +301,7 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
             amounts=None, criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
             planner_config: PlannerConfig = PlannerConfig(), images: bool = True, video: bool = False,
             gui: bool = False, carry_state: bool = False, robust: int | None = None, min_success: float = 0.9,
-            replay_sample: int | None = None, save_plan: bool | str = False) -> Certificate:
+            replay_sample: int | None = None, save_plan: bool | str = False, files=None) -> Certificate:
     """Certify each task on ``scene``; returns the :class:`Certificate` (written to ``out`` if given).
 
     Args:
@@ -306,6 +325,8 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         save_plan: write each planned task's plan, timed as the executor runs it, to
             ``out/plans/<joint>.plan.json`` (``partscene.plan/1``; replay it with :func:`simcheck.certify_plan`);
             a string is the robot spec recorded in the file (True: "default").
+        files: more files the run was judged on, by role ({"scenario": path}, {"robot_spec": path}); the
+            certificate records every such file's sha256, with the scene's, the reference's and the robot's.
 
     Raises:
         SimcheckInputError (SceneLoadError, RobotBindingError) and ``planners.PlannerInputError``
@@ -321,14 +342,16 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         cert = certify(scene, tasks, against=against, seed=seed, out=out, robot=robot, planner=planner,
                        amounts=amounts, criteria=criteria, physics=physics, planner_config=planner_config,
                        images=images, video=video, gui=gui, carry_state=carry_state, robust=robust,
-                       min_success=min_success, replay_sample=replay_sample, save_plan=save_plan)
+                       min_success=min_success, replay_sample=replay_sample, save_plan=save_plan,
+                       files=files)
         if not untested:
             return cert
         cert = dataclasses.replace(cert, untested=untested)
         return dataclasses.replace(cert, path=cert.write(cert.path.parent)) if cert.path is not None else cert
     if robust is not None or replay_sample is not None:
         from simcheck.robust import certify_robustly
-        return certify_robustly(functools.partial(certify, save_plan=save_plan), scene, tasks, robust=robust, min_success=min_success,
+        return certify_robustly(functools.partial(certify, save_plan=save_plan, files=files), scene, tasks,
+                                robust=robust, min_success=min_success,
                                 replay_sample=replay_sample, against=against, seed=seed, out=out, robot=robot,
                                 planner=planner, amounts=amounts, criteria=criteria, physics=physics,
                                 planner_config=planner_config, images=images, video=video, gui=gui)
@@ -371,9 +394,12 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
                 session.save_plan, session.robot_label = bool(save_plan), _robot_label(save_plan)
                 results.append(_run_task(session, task, planner, seed, criteria, out_dir, images, video, None,
                                          session.load_seconds))
-    certificate = Certificate(tasks=tuple(results), scene=str(scene), against=str(against) if against else None,
+    certificate = Certificate(tasks=tuple(results), scene=_recorded_path(scene, out_dir),
+                              against=_recorded_path(against, out_dir) if against else None,
                               robot=str(sim_robot.urdf), criteria=criteria.to_dict(), seeds={"seed": seed},
-                              versions=software_versions(), timings={"total": time.perf_counter() - t0})
+                              versions=software_versions(), timings={"total": time.perf_counter() - t0},
+                              files=certified_files({"scene": scene, "against": against, "robot": sim_robot.urdf,
+                                                     **(files or {})}, out_dir))
     if out_dir is not None:
         path = certificate.write(out_dir)
         certificate = Certificate(**{**certificate.__dict__, "path": path})

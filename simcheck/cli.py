@@ -10,19 +10,22 @@
 
 Exit codes (:func:`scenes.outcome.exit_code` of the task outcomes): 0 every task certified; 2 the input
 could not be used (the message says why: missing joint, fixed joint named as a drawer, broken URDF...);
-3 an internal error (one line naming what failed; ``-v`` logs the traceback); otherwise 1 (some task failed,
-was not planned or its object is unreachable).
+3 an internal error (one line naming what failed; ``-v`` logs the traceback); 130 interrupted (Ctrl-C);
+otherwise 1 (some task failed, was not planned or its object is unreachable). ``--out`` is written as a whole
+(:mod:`scenes.output_folder`): a rerun with the same inputs replaces it, anything else in it is refused
+unless ``--overwrite``.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import logging
 import sys
 from pathlib import Path
 
-from scenes.command_line import root_parser, setup_logging
+from scenes.command_line import add_output_arguments, root_parser, setup_logging
 
 __all__ = ["main"]
 
@@ -34,7 +37,7 @@ def _parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", required=True)
 
     def common(sp):
-        sp.add_argument("--out", default="simcheck-out", help="output folder (certificate.json, rollouts/, images/)")
+        add_output_arguments(sp, "certificate.json, rollouts/, images/", default="simcheck-out")
         sp.add_argument("--seed", type=int, default=None, help="planning seed (default 0)")
         sp.add_argument("--gui", action="store_true", help="PyBullet GUI window (needs a display)")
         sp.add_argument("--video", action="store_true", help="also write an animated GIF per task")
@@ -90,39 +93,64 @@ def main(argv: list[str] | None = None) -> int:
     if args.command == "batch":
         from simcheck.batching.command import run_batch
         return run_batch(args)
-    from scenes.outcome import Outcome, exit_code, internal_error
+    from scenes.outcome import Outcome, exit_code, internal_error, interrupted
     from scenes.description import InputError
 
     what = (f"running scenario {args.scenario}" if args.command == "run" else
             f"certifying {args.plan} on {args.scene}" if args.command == "certify-plan" else f"certifying {args.scene}")
     try:
         from planners.task import ALL_MOVABLE
+        from scenes.output_folder import output_folder
         from simcheck.certification import certify
         from simcheck.errors import SimcheckInputError
         from simcheck.robot_spec_file import load_robot_spec
         from simcheck.run import run_scenario
+        from simcheck.scenario import load_scenario
 
+        outputs = {"images": not args.no_images, "video": args.video}
         if args.command == "certify":
             if args.all_movable and args.task:
                 raise SimcheckInputError("give --task or --all-movable, not both")
             robot = load_robot_spec(args.robot)
-            cert = certify(args.scene, ALL_MOVABLE if args.all_movable else args.task, against=args.against,
-                           amounts=args.amount or None, seed=args.seed or 0, out=Path(args.out), robot=robot,
-                           images=not args.no_images, video=args.video, gui=args.gui, robust=args.robust,
-                           min_success=args.min_success, replay_sample=args.replay_sample,
-                           save_plan=(args.robot if args.robot == "default" else str(Path(args.robot).resolve()))
-                           if args.save_plan else False)
+            spec_file = args.robot if args.robot not in (None, "", "default") else None
+            inputs = {"scene": args.scene, "against": args.against, "robot_spec": spec_file}
+            settings = {"tasks": args.task, "all_movable": args.all_movable, "amounts": args.amount,
+                        "seed": args.seed or 0, "robust": args.robust, "min_success": args.min_success,
+                        "replay_sample": args.replay_sample, "save_plan": args.save_plan, **outputs}
+            with output_folder(args.out, "simcheck certify", inputs=inputs, settings=settings,
+                               overwrite=args.overwrite, verdict="certificate.json") as staging:
+                cert = certify(args.scene, ALL_MOVABLE if args.all_movable else args.task, against=args.against,
+                               amounts=args.amount or None, seed=args.seed or 0, out=staging, robot=robot,
+                               images=not args.no_images, video=args.video, gui=args.gui, robust=args.robust,
+                               min_success=args.min_success, replay_sample=args.replay_sample,
+                               save_plan=(args.robot if args.robot == "default" else str(Path(args.robot).resolve()))
+                               if args.save_plan else False,
+                               files={"robot_spec": spec_file} if spec_file else None)
         elif args.command == "certify-plan":
             from simcheck.given_plan import certify_plan
-            cert = certify_plan(args.scene, args.plan, against=args.against, out=Path(args.out), seed=args.seed or 0,
-                                images=not args.no_images, video=args.video, gui=args.gui, robust=args.robust,
-                                min_success=args.min_success, replay_sample=args.replay_sample)
+            inputs = {"scene": args.scene, "plan": args.plan, "against": args.against}
+            settings = {"seed": args.seed or 0, "robust": args.robust, "min_success": args.min_success,
+                        "replay_sample": args.replay_sample, **outputs}
+            with output_folder(args.out, "simcheck certify-plan", inputs=inputs, settings=settings,
+                               overwrite=args.overwrite, verdict="certificate.json") as staging:
+                cert = certify_plan(args.scene, args.plan, against=args.against, out=staging, seed=args.seed or 0,
+                                    images=not args.no_images, video=args.video, gui=args.gui, robust=args.robust,
+                                    min_success=args.min_success, replay_sample=args.replay_sample)
         else:
-            cert = run_scenario(args.scenario, out=Path(args.out), seed=args.seed, images=not args.no_images,
-                                         video=args.video, gui=args.gui)
+            sc = load_scenario(args.scenario)
+            inputs = {"scenario": args.scenario, "scene": sc.scene, "against": sc.against,
+                      "robot_spec": sc.robot if sc.robot != "default" else None,
+                      **{f"plan{i}": t for i, t in enumerate(sc.tasks) if isinstance(t, Path)}}
+            with output_folder(args.out, "simcheck run", inputs=inputs, settings={"seed": args.seed, **outputs},
+                               overwrite=args.overwrite, verdict="certificate.json") as staging:
+                cert = run_scenario(args.scenario, out=staging, seed=args.seed, images=not args.no_images,
+                                    video=args.video, gui=args.gui)
+        cert = dataclasses.replace(cert, path=Path(args.out) / "certificate.json")
     except InputError as exc:
         print(f"simcheck: error: {exc}", file=sys.stderr)
         return exit_code([Outcome.UNUSABLE])
+    except KeyboardInterrupt:
+        return interrupted("simcheck", args.out)
     except Exception as exc:
         return internal_error("simcheck", what, exc, log)
     if args.json:

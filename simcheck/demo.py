@@ -16,13 +16,15 @@ only what the stages wrote.
 Exit code (:func:`scenes.outcome.exit_code`): over the certified tasks' outcomes, plus ``unusable`` for a
 stage that failed with a partscene error (it names the input that was wrong, as the packages' command
 lines treat it) and ``error`` for one that failed otherwise (a bug; its traceback is logged): 0 when every task is
-certified, 2 on unusable input (also bad arguments, e.g. a scene that is not built in), 3 on an internal
-error, otherwise 1.
+certified, 2 on unusable input (also bad arguments, e.g. a scene that is not built in, or an ``--out``
+holding something else: :mod:`scenes.output_folder`), 3 on an internal error, 130 interrupted, otherwise 1.
+``--out`` is written as a whole (a temporary folder renamed into place).
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import enum
 import json
 import logging
@@ -34,6 +36,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from scenes.command_line import add_output_arguments
 from scenes.description import InputError, PartsceneError, write_text_atomic
 from scenes.outcome import Outcome, exit_code
 from simcheck.report import DemoLayout, render_report
@@ -300,7 +303,8 @@ _REASON_CHARS = 160
 def main(argv: Sequence[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m simcheck.demo",
                                 description="Make, scan, reconstruct and certify a built-in scene; write report.html.")
-    p.add_argument("--out", default="out/demo", help="output directory (default: out/demo)")
+    add_output_arguments(p, "truth/, scene.urdf, graph.json, metrics.json, certificate.json, rollouts/, report.html",
+                         default="out/demo")
     p.add_argument("--scene", default=DemoConfig.scene, help="built-in scene (default: kitchen)")
     p.add_argument("--seed", type=int, default=DemoConfig.seed, help="scene, scan, recon and planning seed")
     p.add_argument("--preset", default=DemoConfig.preset, help="scanner preset (default: realistic)")
@@ -319,7 +323,17 @@ def main(argv: Sequence[str] | None = None) -> int:
         for noisy in ("matplotlib", "PIL", "trimesh"):
             logging.getLogger(noisy).setLevel(logging.WARNING)
     cfg = DemoConfig(args.scene, args.seed, args.preset, args.max_drawers, args.max_doors)
-    result = run_demo(args.out, cfg)
+    from scenes.outcome import interrupted
+    from scenes.output_folder import output_folder
+    try:
+        with output_folder(args.out, "simcheck demo", inputs={}, settings=dataclasses.asdict(cfg),
+                           overwrite=args.overwrite, verdict="certificate.json") as staging:
+            result = run_demo(staging, cfg)
+    except InputError as exc:
+        print(f"simcheck demo: error: {exc}", file=sys.stderr)
+        return exit_code([Outcome.UNUSABLE])
+    except KeyboardInterrupt:
+        return interrupted("simcheck demo", args.out)
     lay = DemoLayout(Path(args.out))
     total = sum(s.seconds for s in result.stages)
     tasks = _task_lines(result.certificate)

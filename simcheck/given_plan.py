@@ -167,7 +167,7 @@ def given_planner(plan, robot, scene):
 def certify_plan(scene, plan, *, against=None, out=None, robot=None, seed: int = 0, robust: int | None = None,
                  min_success: float = 0.9, replay_sample: int | None = None,
                  criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
-                 images: bool = True, video: bool = False, gui: bool = False):
+                 images: bool = True, video: bool = False, gui: bool = False, files=None):
     """Certify the given ``plan`` (a plan file path, or a :class:`GivenPlan` from
     :func:`simcheck.plan_file.plan_from_arrays`) on ``scene``; returns the :class:`Certificate`, its task the
     plan's expectation (written to ``out`` if given).
@@ -177,6 +177,7 @@ def certify_plan(scene, plan, *, against=None, out=None, robot=None, seed: int =
         robot: a planners.RobotSpec; default: the plan's ``robot`` ("default" or a robot spec file).
         seed, robust, min_success, replay_sample: as for :func:`simcheck.certify` (the plan executed in
             ``robust`` worlds sampled with ``seed``).
+        files: more files the run was judged on, by role; the plan file's sha256 is recorded as "plan".
 
     Raises:
         PlanFileError (and the other SimcheckInputErrors): the plan or the scene cannot be used (exit 2).
@@ -190,7 +191,8 @@ def certify_plan(scene, plan, *, against=None, out=None, robot=None, seed: int =
     tasks, planner = given_planner(given, robot, scene)
     return certify(scene, tasks, against=against, out=out, robot=robot, planner=planner, seed=seed, criteria=criteria,
                    physics=physics, images=images, video=video, gui=gui, robust=robust, min_success=min_success,
-                   replay_sample=replay_sample)
+                   replay_sample=replay_sample,
+                   files={"plan": None if isinstance(plan, GivenPlan) else plan, **(files or {})})
 
 
 def given_from_result(plan: PlanResult, vmax_urdf: np.ndarray, physics: PhysicsConfig = DEFAULT_PHYSICS,

@@ -1,6 +1,7 @@
 """Headless key-frame pictures and an optional animated GIF of a task (PyBullet's CPU tiny renderer via
 :meth:`World.render`, PNG/GIF through Pillow -- a dependency we already have; no mp4 encoder is
-installed, so the video is a GIF)."""
+installed, so the video is a GIF). Every file is written atomically (temporary file + rename): an
+interrupted run leaves no partial PNG or GIF."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from scenes.description import write_with_atomic
 from simcheck.world import World
 
 __all__ = ["KeyFrameCamera"]
@@ -43,10 +45,8 @@ class KeyFrameCamera:
         """Write the current view as ``<stem>_<label>.png``; returns the path."""
         from PIL import Image
         self.out_dir.mkdir(parents=True, exist_ok=True)
-        path = self.out_dir / f"{self.stem}_{label}.png"
-        tmp = path.with_suffix(".png.tmp")
-        Image.fromarray(self._image()).save(tmp, format="PNG")
-        tmp.replace(path)
+        path = write_with_atomic(self.out_dir / f"{self.stem}_{label}.png",
+                                 lambda tmp: Image.fromarray(self._image()).save(tmp, format="PNG"))
         self.paths.append(path)
         if self.video:
             self.frames.append(self._image())
@@ -62,9 +62,6 @@ class KeyFrameCamera:
         if not self.frames:
             return None
         from PIL import Image
-        path = self.out_dir / f"{self.stem}.gif"
-        tmp = path.with_suffix(".gif.tmp")
         imgs = [Image.fromarray(f) for f in self.frames]
-        imgs[0].save(tmp, format="GIF", save_all=True, append_images=imgs[1:], duration=int(1000 / fps), loop=0)
-        tmp.replace(path)
-        return path
+        return write_with_atomic(self.out_dir / f"{self.stem}.gif", lambda tmp: imgs[0].save(
+            tmp, format="GIF", save_all=True, append_images=imgs[1:], duration=int(1000 / fps), loop=0))

@@ -17,15 +17,18 @@ def run_scenario(path, *, out=None, seed: int | None = None, images: bool = True
     """Run the scenario YAML at ``path``: its tasks in order, the world state carried from task to task
     (the scene's joints keep their values; each plan starts from the robot's current configuration when
     the planner can, else from its own start); each task's certificate records where it started
-    (``start_state``: the scene's joints, ``start_robot_q``: the robot). ``seed`` overrides the scenario's seed."""
+    (``start_state``: the scene's joints, ``start_robot_q``: the robot). ``seed`` overrides the scenario's seed.
+    The certificate records the scenario file's sha256 beside the scene's (``Certificate.files``)."""
     sc = load_scenario(path)
     robot = load_robot_spec(sc.robot)
+    files = {"scenario": sc.path, "robot_spec": None if sc.robot == "default" else sc.robot,
+             **{f"plan{i}": t for i, t in enumerate(sc.tasks) if isinstance(t, Path)}, **kwargs.pop("files", {})}
     tasks, planner = list(sc.tasks), None
     if any(isinstance(t, Path) for t in tasks):
         tasks, planner = _mixed_tasks(sc, robot, kwargs.pop("planner_config", None))
     return certify(sc.scene, tasks, against=sc.against, seed=sc.seed if seed is None else seed,
                    out=Path(out) if out is not None else None, robot=robot, images=images, video=video, gui=gui,
-                   carry_state=True, planner=planner, **kwargs)
+                   carry_state=True, planner=planner, files=files, **kwargs)
 
 
 def _mixed_tasks(sc, robot, planner_config):

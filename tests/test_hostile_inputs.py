@@ -106,7 +106,7 @@ def _labels_in_out(tmp):
 
 
 RECON_CASES = {
-    "labels-file-is-out-graph-json": (_labels_in_out, r"graph.json: this input is where recon writes its graph.json"),
+    "labels-file-is-out-graph-json": (_labels_in_out, r"out/graph.json: this input \(labels\) lies inside --out"),
     "all-points-identical": (_identical_points, r"scan.ply: all \d+ points lie within"),
     "two-body-parts": (_two_bodies, r"labels.json: object 1 has 2 'body' parts \(101, 102\)"),
     "ascii-ply-cut-short": (_ply_cut_short, r"scan.ply: the PLY header declares 3800 vertices but the file holds 2280"),
@@ -271,3 +271,87 @@ def test_a_crashed_certify_leaves_no_previous_verdict(tmp_path):
         certify(fixture.CABINET, [f"open-drawer:{fixture.DRAWER}"], robot=fixture.ROBOT, out=tmp_path,
                 planner=crashing_planner, images=False)
     assert not (tmp_path / "certificate.json").exists()
+
+
+# --- the output folder: written as a whole, never over a user's files, nothing partial -----------------
+
+def _recon(tmp, *extra):
+    from recon.cli import main
+
+    scan = _write_ply(tmp / "scan.ply", _scan_props())
+    labels = _write_labels(tmp / "labels.json", LABELS)
+    return main(["build", str(scan), "--labels", str(labels), "--out", str(tmp / "out"), "--no-preview", "-q", *extra])
+
+
+@pytest.mark.parametrize("name", ["scene.urdf", "truth.urdf", "graph.json"])
+def test_recon_build_refuses_an_out_holding_a_users_file(name, tmp_path, capsys):
+    (tmp_path / "out").mkdir()
+    (tmp_path / "out" / name).write_text("the user's")
+    assert _recon(tmp_path) == 2
+    err = capsys.readouterr().err
+    assert f"out/{name}: --out" in err and "--overwrite" in err and "Traceback" not in err
+    assert (tmp_path / "out" / name).read_text() == "the user's"
+
+
+def test_recon_build_rerun_replaces_a_different_run_is_refused_unless_overwrite(tmp_path, capsys):
+    assert _recon(tmp_path) == 0
+    assert _recon(tmp_path) == 0                       # the same inputs: replaced
+    assert _recon(tmp_path, "--seed", "1") == 2        # another run: refused
+    assert "it holds a run with seed = 0 (this run: 1)" in capsys.readouterr().err
+    assert _recon(tmp_path, "--seed", "1", "--overwrite") == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["labels.json", "out", "scan.ply"]   # no temporary folder
+
+
+def test_recon_build_on_a_full_disk_exits_2_and_writes_nothing(tmp_path, capsys, monkeypatch):
+    import errno
+    import os
+
+    import recon.output
+
+    def full_disk(path, data):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+
+    monkeypatch.setattr(recon.output, "write_bytes_atomic", full_disk)
+    assert _recon(tmp_path) == 2
+    assert "cannot write (No space left on device); nothing was written" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["labels.json", "scan.ply"]
+
+
+@pytest.mark.parametrize("name", ["scene.urdf", "truth.urdf"])
+def test_simcheck_certify_refuses_an_out_holding_a_users_file(name, tmp_path, capsys):
+    from simcheck.cli import main
+
+    scene = _urdf(tmp_path)
+    (tmp_path / "out").mkdir()
+    (tmp_path / "out" / name).write_text("the user's")
+    code = main(["certify", str(scene), "--task", "open-drawer:drawer_joint", "--out", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert code == 2 and f"out/{name}: --out" in err and "Traceback" not in err, err
+    assert (tmp_path / "out" / name).read_text() == "the user's"
+
+
+def test_recon_build_interrupted_by_ctrl_c_leaves_nothing(tmp_path):
+    """SIGINT in the middle of a real `recon build` (its reconstruction made to wait so the signal lands
+    mid-run): exit 130, no --out, no temporary folder."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    scan = _write_ply(tmp_path / "scan.ply", _scan_props())
+    labels = _write_labels(tmp_path / "labels.json", LABELS)
+    code = ("import sys, time, recon.pipeline as p\n"
+            "p.reconstruct_scan = lambda *a, **k: time.sleep(60)\n"
+            "from recon.cli import main\nsys.exit(main(sys.argv[1:]))\n")
+    proc = subprocess.Popen([sys.executable, "-c", code, "build", str(scan), "--labels", str(labels),
+                             "--out", str(tmp_path / "out")], stderr=subprocess.PIPE, text=True,
+                            env={**__import__("os").environ, "PYTHONPATH": str(Path(__file__).parents[1])})
+    t0 = time.monotonic()
+    while not any(".partial-" in p.name for p in tmp_path.iterdir()):
+        assert proc.poll() is None and time.monotonic() - t0 < 120, proc.stderr.read() if proc.poll() else "slow"
+        time.sleep(0.02)
+    proc.send_signal(signal.SIGINT)
+    err = proc.communicate(timeout=60)[1]
+    assert proc.returncode == 130, err
+    assert "interrupted; nothing was written" in err and "Traceback" not in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["labels.json", "scan.ply"]

@@ -21,13 +21,9 @@ _PACKAGES = ("simcheck", "planners", "recon", "scenes")
 
 def file_digest(path: str | Path | None) -> str:
     """SHA-256 hex digest of the bytes of ``path`` ("" for None)."""
-    if path is None:
-        return ""
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
+    from scenes.output_folder import file_sha256
+
+    return "" if path is None else file_sha256(path)
 
 
 @lru_cache(maxsize=1)
