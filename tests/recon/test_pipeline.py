@@ -147,7 +147,8 @@ def test_cli_builds_and_refuses_bad_input_without_writing(synth, tmp_path):
                           str(tmp_path / "labels.json"), "--out", str(out)], capture_output=True, text=True,
                          timeout=120)
     assert run.returncode == 0, run.stderr
-    assert sorted(p.name for p in out.iterdir()) == ["graph.json", "preview.png", "scene.srdf", "scene.urdf"]
+    assert sorted(p.name for p in out.iterdir()) == [".partscene-run.json", "graph.json", "preview.png", "scene.srdf",
+                                                     "scene.urdf"]
     assert "[1/1]" in run.stderr or "done" in run.stderr
     assert (out / "preview.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
