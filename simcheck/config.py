@@ -188,5 +188,12 @@ class CriteriaConfig:
         return dataclasses.asdict(self)
 
 
+#: The unit of each numeric field of :class:`CriteriaConfig` ("" for a fraction of the request).
+CRITERIA_UNITS = {"opened_fraction": "", "opened_overshoot": "", "settled_linear_speed": "m/s",
+                  "settled_angular_speed": "rad/s", "handle_path_tolerance": "m", "contact_force_tolerance": "N",
+                  "contact_penetration_tolerance": "m", "grasp_slip_tolerance": "m",
+                  "joint_limit_tolerance": "rad or m", "plan_penetration_tolerance": "m",
+                  "recheck_resolution": "rad or m"}
+
 DEFAULT_PHYSICS = PhysicsConfig()
 DEFAULT_CRITERIA = CriteriaConfig()

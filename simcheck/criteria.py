@@ -265,24 +265,26 @@ def grasp_force(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionRe
 
 
 def robot_joint_limits(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
-    """Largest excursion, rad or m, of a robot joint beyond its URDF limits, measured or COMMANDED: the
-    simulated joint stops at its limit, a real arm faults when a plan drives a joint past it."""
+    """Largest excursion of a robot joint beyond its URDF limits, measured or COMMANDED: the simulated joint
+    stops at its limit, a real arm faults when a plan drives a joint past it. The unit is the worst joint's
+    (m for a prismatic joint, rad otherwise; the threshold applies in either)."""
     def excursion(q):
         over = np.maximum(q - r.robot_upper[None, :], r.robot_lower[None, :] - q)
         return np.where(np.isfinite(over), over, 0.0)
 
+    desc = "largest excursion of a robot joint beyond its limits (measured or commanded)"
     measured, commanded = excursion(r.robot_q), excursion(np.asarray(r.robot_q_target, dtype=float))
+    units = tuple(r.robot_joint_units) or ("rad",) * np.shape(r.robot_q)[-1]
     if not measured.size:
-        return _judge("robot_joint_limits", 0.0, c.joint_limit_tolerance, "<=", "rad|m",
-                      "largest excursion of a robot joint beyond its limits (measured or commanded)", "")
+        return _judge("robot_joint_limits", 0.0, c.joint_limit_tolerance, "<=", "rad", desc, "")
     worst = measured if measured.max() >= commanded.max() else commanded
     value = float(max(worst.max(), 0.0))
     k, j = np.unravel_index(np.argmax(worst), worst.shape)
     name = r.robot_joint_names[j] if r.robot_joint_names else "?"
+    unit = units[j] if value > 0 else "rad"
     how = "went" if worst is measured else "was commanded"
-    return _judge("robot_joint_limits", value, c.joint_limit_tolerance, "<=", "rad|m",
-                  "largest excursion of a robot joint beyond its limits (measured or commanded)",
-                  f"robot joint {name} {how} {value:.3f} beyond its limits at t={r.t[k]:.2f} s")
+    return _judge("robot_joint_limits", value, c.joint_limit_tolerance, "<=", unit, desc,
+                  f"robot joint {name} {how} {value:.3f} {unit} beyond its limits at t={r.t[k]:.2f} s")
 
 
 def interaction_force(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:

@@ -42,7 +42,7 @@ from scenes.outcome import Outcome, exit_code
 from simcheck.report import DemoLayout, render_report
 
 __all__ = ["DemoConfig", "StageStatus", "StageRecord", "DemoResult", "TaskChoice", "choose_tasks", "usable_openings",
-           "run_demo", "main"]
+           "untested_joints", "run_demo", "main"]
 
 log = logging.getLogger("simcheck.demo")
 
@@ -149,6 +149,33 @@ def usable_openings(openings, scene_urdf: Path) -> tuple[tuple, str]:
     return tuple(kept), "; ".join(left_out)
 
 
+def untested_joints(scene, scene_urdf: Path, choice: TaskChoice, cfg: DemoConfig) -> dict[str, str]:
+    """Every movable joint the demo did not certify, with why: the truth's drawers and doors that were
+    rejected on ``scene_urdf`` (:func:`planners.task.check_task`'s reason) or beyond ``cfg``'s caps, then
+    the movable joints of ``scene_urdf`` that no drawer or door of the truth names."""
+    from planners.errors import TaskSpecError
+    from planners.task import check_task, parse_task
+    from scenes.openings import openings
+    from simcheck.scene_joints import read_scene_joints
+
+    joints = read_scene_joints(scene_urdf)
+    tasked = {joint for _, joint in choice.tasks}
+    untested: dict[str, str] = {}
+    for o in openings(scene):
+        if o.joint in tasked:
+            continue
+        try:
+            check_task(parse_task(o.task), joints, scene_urdf)
+            cap = cfg.max_drawers if o.kind == "drawer" else cfg.max_doors
+            untested[o.joint] = f"the demo certifies at most {cap} {o.kind}s"
+        except TaskSpecError as exc:
+            untested[o.joint] = f"rejected: {exc}"
+    for name, j in joints.items():
+        if j.type in ("prismatic", "revolute", "continuous") and name not in tasked and name not in untested:
+            untested[name] = "movable in the reconstruction, but no drawer or door of the truth has this name"
+    return untested
+
+
 # ------------------------------------------------------------------------------------------ stages
 def _stage_scene(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
     from scenes import make_scene
@@ -203,6 +230,10 @@ def _stage_certify(cfg: DemoConfig, lay: DemoLayout, state: dict) -> str:
     choice: TaskChoice = state["tasks"]
     cert = certify(lay.scene_urdf, [f"{kind}:{joint}" for kind, joint in choice.tasks], against=lay.truth_urdf,
                    out=lay.root, seed=cfg.seed)
+    untested = untested_joints(state["scene"], lay.scene_urdf, choice, cfg)
+    if untested:
+        cert = dataclasses.replace(cert, untested=untested)
+        cert.write(lay.root)
     state["certificate"] = cert
     n_ok = sum(1 for t in cert.tasks if t.status is Outcome.CERTIFIED)
     return f"{n_ok} of {len(cert.tasks)} tasks certified"

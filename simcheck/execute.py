@@ -313,6 +313,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
     orows = rec.obj_rows
     return Rollout(
         joint=joint, moving_link=moving, handle_link=handle, robot_joint_names=tuple(robot.joint_names),
+        robot_joint_units=tuple("m" if world.robot_joint(n).type == "prismatic" else "rad" for n in robot.joint_names),
         segment_names=tuple(s.name for s in plan.segments),
         gripper_links=tuple(dict.fromkeys(robot.gripper_links + robot.finger_links + (robot.tool_link,))),
         requested_amount=float(plan.amount if requested_amount is None else requested_amount),

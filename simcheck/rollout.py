@@ -23,7 +23,8 @@ ROLLOUT_FORMAT = "partscene.rollout/1"
 
 _META = ("joint", "moving_link", "handle_link", "robot_joint_names", "segment_names", "gripper_links",
          "requested_amount", "object_q0", "grasp_note", "time_step", "holding_force", "opening_type",
-         "finger_links", "opening_segment", "release_segment", "rest_contact_links", "rest_contact_worst")
+         "finger_links", "opening_segment", "release_segment", "rest_contact_links", "rest_contact_worst",
+         "robot_joint_units")
 
 
 @dataclass(frozen=True)
@@ -35,6 +36,7 @@ class Rollout:
         moving_link: the link the task joint moves.
         handle_link: the link that was grasped (the handle, or the moving link itself).
         robot_joint_names: (dof,) robot joint names, the columns of ``robot_q``.
+        robot_joint_units: (dof,) "m" (prismatic) or "rad" per robot joint; () in rollouts recorded before.
         segment_names: names of the plan's segments; ``segment`` indexes them.
         gripper_links: robot links allowed to touch ``handle_link``.
         requested_amount: the opening asked for, rad or m (in the executed joint's units); along
@@ -128,6 +130,7 @@ class Rollout:
     rest_contact_links: tuple[str, ...] = ()
     rest_contact_excess: np.ndarray | None = None
     rest_contact_worst: str = ""
+    robot_joint_units: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         n = len(self.t)

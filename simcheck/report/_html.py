@@ -8,7 +8,9 @@ import html
 import math
 from collections.abc import Iterable, Sequence
 
-from ._figure import data_uri_from_png
+import numpy as np
+
+from ._figure import data_uri_from_png, min_text_px
 
 __all__ = ["esc", "format_number", "num", "table", "img", "section", "page", "note", "badge"]
 
@@ -21,8 +23,14 @@ def esc(text: object) -> str:
     return html.escape(str(text), quote=True)
 
 
+#: Magnitudes below this are shown as 0: no quantity the report shows (metres, radians, m/s, N, seconds,
+#: fractions) is resolved below a nanounit; 3.553e-15 m/s is a settled part, written "0 m/s".
+ZERO_BELOW = 1e-9
+
+
 def format_number(value: object) -> str:
-    """How a number is shown: bools as yes/no, ints as is, floats with 4 significant digits."""
+    """How a number is shown: bools as yes/no, ints as is, floats with 4 significant digits -- written out
+    (0.00006604, 12350) between 1e-6 and 1e6, in scientific notation outside, 0 below :data:`ZERO_BELOW`."""
     if value is None:
         return "–"
     if isinstance(value, bool):
@@ -34,6 +42,10 @@ def format_number(value: object) -> str:
         return "nan"
     if math.isinf(v):
         return "inf" if v > 0 else "-inf"
+    if abs(v) < ZERO_BELOW:
+        return "0"
+    if 1e-6 <= abs(v) < 1e6:
+        return np.format_float_positional(v, precision=SIGNIFICANT_DIGITS, unique=False, fractional=False, trim="-")
     return f"{v:.{SIGNIFICANT_DIGITS}g}"
 
 
@@ -51,8 +63,11 @@ def table(headers: Sequence[str], rows: Iterable[Sequence[str]], cls: str = "") 
 
 
 def img(png: bytes, alt: str, key: str) -> str:
-    """An ``<img>`` with the PNG inline as a data URI; ``key`` names the figure (``data-figure``)."""
-    return (f'<figure><img src="{data_uri_from_png(png)}" alt="{esc(alt)}" data-figure="{esc(key)}">'
+    """An ``<img>`` with the PNG inline as a data URI; ``key`` names the figure (``data-figure``);
+    ``data-min-text-px`` is the height of its smallest text in the PNG's pixels (``_figure.min_text_px``)."""
+    px = min_text_px(png)
+    text = f' data-min-text-px="{px:.2f}"' if px is not None else ""
+    return (f'<figure><img src="{data_uri_from_png(png)}" alt="{esc(alt)}" data-figure="{esc(key)}"{text}>'
             f"<figcaption>{esc(alt)}</figcaption></figure>")
 
 
@@ -82,12 +97,13 @@ figcaption{color:#666;font-size:.85em}
 table{border-collapse:collapse;margin:.6em 0;font-size:.92em}
 th,td{border:1px solid #ddd;padding:.25em .6em;text-align:left} th{background:#f5f5f5}
 td .num{font-variant-numeric:tabular-nums}
+code{font-family:'DejaVu Sans Mono',monospace;font-size:.92em}
 .badge{display:inline-block;padding:.05em .6em;border-radius:.8em;font-weight:600;font-size:.85em}
 .badge.ok{background:#d4f4dd;color:#14632b} .badge.bad{background:#fbdada;color:#8b1a1a}
 .badge.unknown{background:#eee;color:#555}
 .note{padding:.5em .8em;border-left:4px solid #aaa;background:#fafafa}
 .note.missing{border-color:#e0a800;background:#fff8e1}
-.grid{display:grid;grid-template-columns:repeat(auto-fill,minmax(520px,1fr));gap:.8em}
+.grid{display:grid;grid-template-columns:1fr;gap:.8em}
 .task{border:1px solid #e3e3e3;border-radius:6px;padding:.2em 1em 1em;margin:1em 0}
 """
 

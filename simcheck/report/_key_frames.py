@@ -17,14 +17,19 @@ from simcheck.rollout import Rollout
 
 from ._primitives import Solid, solids_from_urdf
 
-__all__ = ["key_frame_indices", "key_frame_images", "camera_for", "FRAME_SIZE"]
+__all__ = ["key_frame_indices", "key_frame_images", "camera_for", "camera_distance", "part_extent", "FRAME_SIZE"]
 
 log = logging.getLogger(__name__)
 
 #: Width, height of a key frame, pixels.
 FRAME_SIZE = (360, 270)
-#: Camera distance from the handle (m), height above it (m) and angle off the opening direction (deg).
+#: Camera distance from the handle (m), height above it (m) and angle off the opening direction (deg):
+#: the farthest view; a smaller part is looked at from closer (:func:`camera_distance`).
 CAMERA_DISTANCE, CAMERA_HEIGHT, CAMERA_ANGLE_DEG = 1.9, 1.0, 50.0
+#: The nearest camera distance (m): the gripper and the arm's wrist stay in view.
+MIN_CAMERA_DISTANCE = 1.0
+#: Vertical field of view of the key frames (deg), and the share of it the moving part fills.
+FOV_DEG, PART_FILL = 60.0, 0.6
 #: The last metres of the line of sight before the handle that may cross parts (the drawer, the body).
 CLEARANCE = 0.3
 
@@ -71,17 +76,40 @@ def _blocked(eye: np.ndarray, target: np.ndarray, obstacles: Sequence[Solid]) ->
     return any(_segment_hits_box(eye, end, s) for s in obstacles)
 
 
-def camera_for(rollout: Rollout, obstacles: Sequence[Solid] = ()) -> tuple[np.ndarray, np.ndarray]:
-    """``(target, eye)`` world points, metres: looking at the handle from in front of it and to the side.
+def part_extent(rollout: Rollout, moving: Sequence[Solid] = ()) -> tuple[np.ndarray, float]:
+    """``(centre (3,), size)`` world metres of what a key frame must show: the handle's whole path and the
+    moving part's primitives ``moving`` (as the scene file has them, closed): the centre of their box and
+    its largest side."""
+    pts = [rollout.T_world_handle[:, :3, 3]]
+    for s in moving:
+        corners = np.array([[x, y, z] for x in (-.5, .5) for y in (-.5, .5) for z in (-.5, .5)]) * s.size
+        pts.append(corners @ s.T_world_shape[:3, :3].T + s.T_world_shape[:3, 3])
+    pts = np.concatenate(pts)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    return (lo + hi) / 2, float(np.max(hi - lo))
+
+
+def camera_distance(size: float) -> float:
+    """Distance (m) from which a part of ``size`` (m) fills :data:`PART_FILL` of the frame's height,
+    within [:data:`MIN_CAMERA_DISTANCE`, :data:`CAMERA_DISTANCE`]."""
+    d = size / PART_FILL / (2.0 * np.tan(np.radians(FOV_DEG) / 2))
+    return float(np.clip(d, MIN_CAMERA_DISTANCE, CAMERA_DISTANCE))
+
+
+def camera_for(rollout: Rollout, obstacles: Sequence[Solid] = (), moving: Sequence[Solid] = ()) -> tuple[np.ndarray, np.ndarray]:
+    """``(target, eye)`` world points, metres: looking at the part being opened from in front of it and to
+    the side, close enough that the part (its primitives ``moving`` and the handle's path) fills the frame.
 
     "In front" is the horizontal direction the handle moved (outwards for a drawer or a door); when it
     did not move, the direction from the handle to the robot tool at the start. Candidate eyes are tried
-    from the preferred view (:data:`CAMERA_ANGLE_DEG` to the side, :data:`CAMERA_DISTANCE` away,
-    :data:`CAMERA_HEIGHT` up) outwards; the first whose line of sight no obstacle (e.g. a wall) blocks
-    is taken (the preferred one when all are blocked).
+    from the preferred view (:data:`CAMERA_ANGLE_DEG` to the side, :func:`camera_distance` away, up in
+    the ratio :data:`CAMERA_HEIGHT` : :data:`CAMERA_DISTANCE`) outwards; the first whose line of sight no
+    obstacle (e.g. a wall) blocks is taken (the preferred one when all are blocked).
     """
     p = rollout.T_world_handle[:, :3, 3]
-    target = p.mean(axis=0)
+    target, size = part_extent(rollout, moving)
+    distance = camera_distance(size)
+    height = distance * CAMERA_HEIGHT / CAMERA_DISTANCE
     d = p[-1] - p[0]
     d[2] = 0.0
     if np.linalg.norm(d) < 0.02:
@@ -95,8 +123,7 @@ def camera_for(rollout: Rollout, obstacles: Sequence[Solid] = ()) -> tuple[np.nd
         for angle in (CAMERA_ANGLE_DEG, -CAMERA_ANGLE_DEG, 30.0, -30.0, 70.0, -70.0, 0.0):
             a = np.radians(angle)
             R = np.array([[np.cos(a), -np.sin(a), 0.0], [np.sin(a), np.cos(a), 0.0], [0.0, 0.0, 1.0]])
-            candidates.append(target + dist_scale * (CAMERA_DISTANCE * (R @ d)
-                                                     + np.array([0.0, 0.0, CAMERA_HEIGHT])))
+            candidates.append(target + dist_scale * (distance * (R @ d) + np.array([0.0, 0.0, height])))
     for eye in candidates:
         if not _blocked(eye, target, obstacles):
             return target, eye
@@ -116,8 +143,10 @@ def key_frame_images(rollout: Rollout, scene_urdf: str | Path, robot=None) -> li
         from planners import default_robot
         robot = default_robot()
     sim_robot = sim_robot_from_spec(robot)
-    obstacles = [s for s in solids_from_urdf(scene_urdf) if s.link != rollout.handle_link]
-    target, eye = camera_for(rollout, obstacles)
+    solids = solids_from_urdf(scene_urdf)
+    obstacles = [s for s in solids if s.link != rollout.handle_link]
+    moving = [s for s in solids if s.link in (rollout.moving_link, rollout.handle_link)]
+    target, eye = camera_for(rollout, obstacles, moving)
     frames = []
     with World(scene_urdf, sim_robot) as world:
         names = list(rollout.robot_joint_names)
@@ -125,7 +154,7 @@ def key_frame_images(rollout: Rollout, scene_urdf: str | Path, robot=None) -> li
         for caption, i in key_frame_indices(rollout):
             world.reset_robot(rollout.robot_q[i][order], fingers_open=not bool(rollout.grasp_active[i]))
             world.reset_scene_joint(rollout.joint, float(rollout.object_q[i]))
-            image = world.render(target, eye, width=FRAME_SIZE[0], height=FRAME_SIZE[1])
+            image = world.render(target, eye, width=FRAME_SIZE[0], height=FRAME_SIZE[1], fov_deg=FOV_DEG)
             frames.append((f"{caption}: t = {rollout.t[i]:.1f} s", image))
     log.debug("rendered %d key frames of %s", len(frames), rollout.joint)
     return frames

@@ -115,6 +115,10 @@ def _widest_layer(g: nx.DiGraph) -> int:
     return max(counts.values())
 
 
+#: Node and edge label size (points; 12.5 px at the figure's 90 dpi) and node area (points^2) that holds it.
+_FONT_PT, _NODE_SIZE = 10, 1700
+
+
 def _draw_tree(ax, tree: PartTree, title: str) -> None:
     g = tree.graph
     if g.number_of_nodes() == 0:
@@ -128,20 +132,20 @@ def _draw_tree(ax, tree: PartTree, title: str) -> None:
         und.add_nodes_from(g.nodes)
         und.add_edges_from((a, b) for a, b, _ in tree.other_contacts)
         nx.draw_networkx_edges(und, pos, ax=ax, edge_color="#c8c8c8", style="dotted", width=0.9)
-    nx.draw_networkx_nodes(g, pos, ax=ax, node_color=colours, node_size=900, edgecolors="black")
+    nx.draw_networkx_nodes(g, pos, ax=ax, node_color=colours, node_size=_NODE_SIZE, edgecolors="black")
     for n in g.nodes:  # white text on dark nodes
         dark = sum(colour_of_label(g.nodes[n]["label"])) < 1.2
-        nx.draw_networkx_labels(g, pos, ax=ax, font_size=7, font_color="white" if dark else "black",
+        nx.draw_networkx_labels(g, pos, ax=ax, font_size=_FONT_PT, font_color="white" if dark else "black",
                                 labels={n: f"{g.nodes[n]['label']}\n{n}"})
     for u, v, data in g.edges(data=True):
         nx.draw_networkx_edges(g, pos, edgelist=[(u, v)], ax=ax, arrows=True, arrowsize=12,
                                edge_color=_JOINT_COLOURS.get(data["type"], "#9467bd"), width=2.0,
-                               node_size=900)
+                               node_size=_NODE_SIZE)
     edge_labels = {(u, v): _JOINT_LETTERS.get(d["type"], d["type"])
                    + ("" if d["score"] is None else f" {d['score']:.2f}") for u, v, d in g.edges(data=True)}
-    nx.draw_networkx_edge_labels(g, pos, edge_labels=edge_labels, ax=ax, font_size=7, rotate=False, label_pos=0.7,
+    nx.draw_networkx_edge_labels(g, pos, edge_labels=edge_labels, ax=ax, font_size=_FONT_PT, rotate=False, label_pos=0.7,
                                  bbox={"boxstyle": "round", "fc": "white", "ec": "none", "alpha": 0.8})
-    ax.set_title(title, fontsize=10)
+    ax.set_title(title, fontsize=_FONT_PT + 1)
     ax.margins(0.2)
     ax.set_axis_off()
 
@@ -150,7 +154,7 @@ def png_of_part_trees(panels: Sequence[tuple[str, PartTree]], panel_in: float = 
     """One PNG with a tree per ``(title, tree)`` side by side (e.g. estimate beside truth); a panel is
     wider when a layer of its tree has many parts."""
     widest = max([_widest_layer(t.graph) for _, t in panels] + [1])
-    fig = new_figure(max(panel_in, 1.3 * widest) * len(panels), panel_in)
+    fig = new_figure(max(panel_in, 1.5 * widest) * len(panels), panel_in + 0.6)
     for i, (title, tree) in enumerate(panels):
         _draw_tree(fig.add_subplot(1, len(panels), i + 1), tree, title)
     return png_from_figure(fig)

@@ -22,6 +22,7 @@ from ._html import badge, esc, img, note, num, page, section, table
 from ._layout import DemoLayout
 from ._part_tree_image import png_of_part_trees, trees_from_scene_json
 from ._primitives import solids_from_truth, solids_from_urdf
+from ._promises import does_not_promise_html
 from ._scan_image import load_scan, png_of_scan
 from ._scene_image import png_of_scenes, view_azimuth
 from ._tables import (criteria_table, key_value_table, metrics_table, pipeline_table, robust_table,
@@ -154,7 +155,40 @@ def _tasks_section(lay: DemoLayout, cert: dict | None) -> str:
                       esc(", ".join(c.get("name", "?") for c in t.get("criteria", [])
                                     if isinstance(c, Mapping) and c.get("passed") is False) or "none")]
                      for i, t in enumerate(tasks)], "summary")
-    return summary + "".join(parts)
+    return summary + _untested_table(lay, cert, tasks) + "".join(parts)
+
+
+def _untested_table(lay: DemoLayout, cert: Mapping, tasks: list) -> str:
+    """The movable joints that were not tested, each with why: the certificate's ``untested`` (with why),
+    then any other movable joint of the planned scene ("not requested")."""
+    untested = dict(cert.get("untested") or {})
+    tested = {str(t.get("joint")) for t in tasks if isinstance(t, Mapping)}
+    scene = _file_of(lay, cert.get("scene"))
+    if scene is not None:
+        from simcheck.scene_joints import read_scene_joints
+        try:
+            joints = read_scene_joints(scene)
+        except Exception as exc:  # noqa: BLE001 -- a scene the report cannot read is named, not fatal
+            log.warning("report: cannot list the movable joints of %s: %s", scene, exc)
+            joints = {}
+        for name, j in joints.items():
+            if j.type in ("prismatic", "revolute", "continuous") and name not in tested and name not in untested:
+                untested[name] = "not requested (no task names it)"
+    if not untested:
+        return "<h3>Movable joints not tested</h3><p>None: every movable joint of the scene was tested.</p>"
+    return ("<h3>Movable joints not tested</h3>"
+            + table(["joint", "why"], [[f"<code>{esc(j)}</code>", esc(why)] for j, why in untested.items()],
+                    "untested"))
+
+
+def _file_of(lay: DemoLayout, ref) -> Path | None:
+    """A path the certificate records: as written, relative to the certificate's folder, or by name there."""
+    if not isinstance(ref, str) or not ref:
+        return None
+    for p in (Path(ref), lay.root / ref, lay.root / Path(ref).name):
+        if p.is_file():
+            return p
+    return None
 
 
 def _required_fraction(cert: Mapping) -> float | None:
@@ -169,10 +203,20 @@ def _provenance_section(cert: dict | None) -> str:
     if cert is None:
         return ""
     body = ""
+    files = cert.get("files")
+    if isinstance(files, Mapping) and files:
+        body += ("<h3>files certified</h3><p>The content hash (SHA-256) of every file the certificate was judged "
+                 "on: the certificate holds for these bytes only.</p>"
+                 + table(["role", "file", "sha256"],
+                         [[esc(role), f"<code>{esc(f.get('path', ''))}</code>", f"<code>{esc(f.get('sha256', ''))}</code>"]
+                          for role, f in files.items() if isinstance(f, Mapping)], "files"))
+    from simcheck.config import CRITERIA_UNITS
+
+    units = {"criteria": CRITERIA_UNITS, "timings": {k: "s" for k in (cert.get("timings") or {})}}
     for field in ("criteria", "seeds", "versions", "timings"):
         value = cert.get(field)
         if isinstance(value, Mapping) and value:
-            body += f"<h3>{esc(field)}</h3>" + key_value_table(value, f"cert.{field}")
+            body += f"<h3>{esc(field)}</h3>" + key_value_table(value, f"cert.{field}", units.get(field))
     return body
 
 
@@ -207,7 +251,9 @@ def render_report(demo_dir: str | os.PathLike, out_html: str | os.PathLike | Non
     ]
     prov = _provenance_section(cert)
     if prov:
-        sections.append(("provenance", "6. Criteria, seeds, versions, timings", prov))
+        sections.append(("provenance", "6. Files, criteria, seeds, versions, timings", prov))
+    sections.append(("promise", f"{len(sections) - (1 if demo is not None else 0) + 1}. What a certificate does "
+                     "not promise", does_not_promise_html()))
 
     title = "partscene report"
     if truth is not None:

@@ -10,7 +10,7 @@ from matplotlib import colormaps
 from matplotlib.lines import Line2D
 
 from ._errors import ArtifactError
-from ._figure import colour_of_label, hconcat_pngs, new_figure, png_from_figure
+from ._figure import colour_of_label, crop_alike, hconcat_pngs, new_figure, png_from_figure
 from ._scene_image import VIEW_AZIM_DEG, set_view
 
 __all__ = ["ScanPoints", "load_scan", "png_of_scan", "MAX_DRAWN_POINTS"]
@@ -104,6 +104,6 @@ def png_of_scan(scan: ScanPoints, seed: int = 0, panel_in: float = 5.5, azim_deg
         set_view(ax, bounds, azim_deg)
         ax.set_title(title, fontsize=11)
         if legend and handles:
-            ax.legend(handles=handles, loc="upper right", fontsize=8, ncol=2, frameon=False)
-        pngs.append(png_from_figure(fig, dpi=110))
-    return hconcat_pngs(pngs, height_px)
+            ax.legend(handles=handles, loc="upper right", fontsize=10, ncol=2, frameon=False)
+        pngs.append(png_from_figure(fig, dpi=110, trim=False))
+    return hconcat_pngs(crop_alike(pngs), height_px)

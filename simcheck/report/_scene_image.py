@@ -9,7 +9,7 @@ from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 from scenes.description import FRONT_CATEGORIES
 
-from ._figure import colour_of_label, hconcat_pngs, new_figure, png_from_figure
+from ._figure import colour_of_label, crop_alike, hconcat_pngs, new_figure, png_from_figure
 from ._primitives import Solid, mesh_from_solid
 
 __all__ = ["png_of_scenes", "draw_solids"]
@@ -110,8 +110,9 @@ SIDE_TURN_DEG = -30.0
 
 def png_of_scenes(panels: Sequence[tuple[str, Sequence[Solid]]], panel_in: float = 5.0,
                   azim_deg: float = VIEW_AZIM_DEG, height_px: int = 380) -> bytes:
-    """One PNG with a 3-D panel per ``(title, solids)``, all drawn in the same view box, each panel
-    trimmed to its content and scaled to ``height_px``."""
+    """One PNG with a 3-D panel per ``(title, solids)``, all drawn in the same view box by the same camera
+    and cropped alike (:func:`._figure.crop_alike`), so reconstruction and truth share one framing and
+    scale, then scaled to ``height_px``."""
     all_solids = [s for _, solids in panels for s in solids]
     bounds = scene_bounds(all_solids)
     pngs = []
@@ -120,5 +121,5 @@ def png_of_scenes(panels: Sequence[tuple[str, Sequence[Solid]]], panel_in: float
         ax = fig.add_subplot(1, 1, 1, projection="3d")
         draw_solids(ax, solids, bounds, azim_deg)
         ax.set_title(f"{title} ({len(solids)} primitives)", fontsize=11)
-        pngs.append(png_from_figure(fig, dpi=110))
-    return hconcat_pngs(pngs, height_px)
+        pngs.append(png_from_figure(fig, dpi=110, trim=False))
+    return hconcat_pngs(crop_alike(pngs), height_px)

@@ -77,30 +77,41 @@ def metrics_table(metrics: Mapping) -> str:
     summary = metrics.get("summary", {})
     out = "<h3>Scene</h3>" + table(
         ["metric", "value", "meaning"],
-        [[esc(k), num(v, f"metrics.summary.{k}"), esc(METRIC_MEANINGS.get(k, ""))] for k, v in summary.items()],
+        [[esc(k), num(v, f"metrics.summary.{k}", _unit_of_name(k)), esc(METRIC_MEANINGS.get(k, ""))]
+         for k, v in summary.items()],
         "metrics")
     cols = ("chamfer", "iou", "ap")
     out += "<h3>Objects</h3>" + table(
-        ["object", "category", "status", "Chamfer", "IoU", "contact AP"],
+        ["object", "category", "status", "Chamfer (unit box)", "IoU", "contact AP"],
         [[esc(o.get("name")), esc(o.get("category", "")), esc(o.get("status", ""))]
          + [num(o.get(c), f"metrics.objects.{o.get('name')}.{c}") for c in cols] for o in metrics.get("objects", [])],
         "metrics")
-    jcols = ("axis_error_deg", "hinge_distance_m", "upper_error")
+    jcols = (("axis_error_deg", "deg"), ("hinge_distance_m", "m"), ("upper_error", None))
     out += "<h3>Movable joints</h3>" + table(
-        ["joint", "true type", "estimated type", "axis error (deg)", "hinge distance (m)",
-         "range error (m or rad)"],
+        ["joint", "true type", "estimated type", "axis error", "hinge distance", "range error"],
         [[f"<code>{esc(j.get('name'))}</code>", esc(j.get("true_type", "")), esc(j.get("est_type", "") or "missing")]
-         + [num(j.get(c), f"metrics.joints.{j.get('name')}.{c}") for c in jcols] for j in metrics.get("joints", [])],
+         + [num(j.get(c), f"metrics.joints.{j.get('name')}.{c}",
+                unit or ("m" if j.get("true_type") == "prismatic" else "rad"))
+            for c, unit in jcols] for j in metrics.get("joints", [])],
         "metrics")
     return out
 
 
-def key_value_table(doc: Mapping, key_prefix: str) -> str:
-    """A two-column table of a flat-ish mapping (numbers tagged, other values as text)."""
+def _unit_of_name(name: str) -> str:
+    """The unit a metric's name ends with (``..._deg``, ``..._m``, ``..._rad``), else ""."""
+    for suffix, unit in (("_deg", "deg"), ("_m", "m"), ("_rad", "rad")):
+        if name.endswith(suffix):
+            return unit
+    return ""
+
+
+def key_value_table(doc: Mapping, key_prefix: str, units: Mapping[str, str] | None = None) -> str:
+    """A two-column table of a flat-ish mapping (numbers tagged, with their unit from ``units``; other
+    values as text)."""
     rows = []
     for k, v in doc.items():
         if isinstance(v, (int, float)) or v is None:
-            rows.append([esc(k), num(v, f"{key_prefix}.{k}")])
+            rows.append([esc(k), num(v, f"{key_prefix}.{k}", (units or {}).get(k, ""))])
         else:
             rows.append([esc(k), esc(v)])
     return table(["", ""], rows, "kv")
@@ -113,7 +124,7 @@ def criteria_table(task_key: str, criteria: list[Mapping]) -> str:
         name = str(c.get("name", "?"))
         key = f"cert.{task_key}.{name}"
         passed = c.get("passed")
-        unit = str(c.get("unit", "") or "")
+        unit = str(c.get("unit", "") or "").replace("|", " or ")   # "rad|m" in certificates before units per joint
         result = badge("n/a", None) if passed is None else badge("pass" if passed else "fail", passed)
         rows.append([esc(name), result,
                      num(c.get("value"), key + ".value", unit), esc(c.get("comparison", "")),

@@ -6,13 +6,12 @@ Matplotlib (the plot) and Pillow (the frame strip) over arrays; where the arrays
 
 from __future__ import annotations
 
-import io
 from collections.abc import Sequence
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
-from ._figure import new_figure, png_from_figure
+from ._figure import new_figure, png_bytes, png_from_figure
 
 __all__ = ["png_of_opening", "png_of_key_frames"]
 
@@ -27,7 +26,7 @@ def png_of_opening(t: np.ndarray, q: np.ndarray, t_plan: np.ndarray | None, q_pl
     ``unit`` is "m" or "rad" (radians are shown in degrees).
     """
     scale, shown_unit = (np.degrees(1.0), "deg") if unit == "rad" else (1.0, unit)
-    fig = new_figure(6.4, 3.2)
+    fig = new_figure(7.2, 3.8)
     ax = fig.add_subplot(1, 1, 1)
     t_total = max(float(t[-1] - t[0]) if len(t) else 1.0, 1e-9)
     for i, (name, t0, t1) in enumerate(segments):
@@ -35,7 +34,7 @@ def png_of_opening(t: np.ndarray, q: np.ndarray, t_plan: np.ndarray | None, q_pl
         if (t1 - t0) / t_total < 0.07:
             continue  # too narrow to label legibly
         ax.text((t0 + t1) / 2, 1.0, name, transform=ax.get_xaxis_transform(), ha="center", va="bottom",
-                fontsize=7, color="#555555")
+                fontsize=10, color="#555555")
     if t_plan is not None and q_plan is not None and len(t_plan):
         ax.plot(t_plan, np.asarray(q_plan) * scale, color="#1f77b4", lw=2.0, ls="--", label="plan")
     ax.plot(t, np.asarray(q) * scale, color="#d62728", lw=1.6, label="executed (physics)")
@@ -46,13 +45,13 @@ def png_of_opening(t: np.ndarray, q: np.ndarray, t_plan: np.ndarray | None, q_pl
                        label=f"certified above ({required_fraction:.0%})")
     ax.set_xlabel("time (s)")
     ax.set_ylabel(f"joint opening ({shown_unit})")
-    ax.set_title(title, fontsize=10, pad=14)
+    ax.set_title(title, fontsize=11, pad=16)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend(fontsize=10, loc="upper left")
     return png_from_figure(fig)
 
 
-def png_of_key_frames(frames: Sequence[tuple[str, np.ndarray]], per_row: int = 5, caption_px: int = 14,
+def png_of_key_frames(frames: Sequence[tuple[str, np.ndarray]], per_row: int = 3, caption_px: int = 16,
                       gap_px: int = 8) -> bytes:
     """A strip of ``(caption, (h, w, 3) uint8 RGB)`` images, ``per_row`` per row, each captioned above
     (composed with Pillow: no figure needed for images that are already pixels)."""
@@ -71,6 +70,4 @@ def png_of_key_frames(frames: Sequence[tuple[str, np.ndarray]], per_row: int = 5
         draw.text((x + (w - tw) / 2, y), caption, fill=(40, 40, 40), font=font)
         tile = Image.fromarray(np.asarray(image, dtype=np.uint8)[:, :, :3]).resize((w, h))
         canvas.paste(tile, (x, y + caption_px + 6))
-    out = io.BytesIO()
-    canvas.save(out, format="PNG", optimize=True)
-    return out.getvalue()
+    return png_bytes(canvas, float(caption_px))

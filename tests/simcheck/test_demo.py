@@ -142,3 +142,23 @@ def test_demo_runs_as_a_module_in_a_subprocess(tmp_path):
     assert "stage scene: failed: ScanError: scan parameter n_frames=0 is out of range" in res.stdout
     assert "Traceback" not in res.stderr  # a project error explains itself
     assert (tmp_path / "o" / "report.html").stat().st_size > 1000
+
+
+def test_the_joints_the_demo_did_not_certify_are_named_with_why(tmp_path, monkeypatch):
+    import importlib
+
+    from scenes.openings import Opening
+
+    urdf = tmp_path / "scene.urdf"
+    urdf.write_text(ZERO_RANGE_URDF)
+    truth = (Opening("door", "cabinet3_door13_joint", "cabinet3", "cabinet"),
+             Opening("drawer", "cabinet3_drawer14_joint", "cabinet3", "cabinet"),
+             Opening("drawer", "cabinet3_drawer16_joint", "cabinet3", "cabinet"))
+    monkeypatch.setattr(importlib.import_module("scenes.openings"), "openings", lambda scene: truth)
+    choice = demo.TaskChoice((("open-drawer", "cabinet3_drawer14_joint"),), "")
+    untested = demo.untested_joints(None, urdf, choice, DemoConfig(max_drawers=1))
+    assert untested["cabinet3_door13_joint"].startswith("rejected: ") and "prismatic" in untested["cabinet3_door13_joint"]
+    assert "does not exist" in untested["cabinet3_drawer16_joint"]
+    assert untested["cabinet3_drawer12_joint"] == ("movable in the reconstruction, but no drawer or door of the truth "
+                                                   "has this name")
+    assert "cabinet3_drawer14_joint" not in untested

@@ -38,13 +38,17 @@ PROBE = """
 window.addEventListener('load', () => {
   const imgs = [...document.images].map(im => {
     const r = im.getBoundingClientRect();
-    return {figure: im.dataset.figure, complete: im.complete, w: im.naturalWidth, h: im.naturalHeight,
+    return {figure: im.dataset.figure, text: im.dataset.minTextPx, complete: im.complete,
+            w: im.naturalWidth, h: im.naturalHeight,
             x: r.left + window.scrollX, y: r.top + window.scrollY, rw: r.width, rh: r.height};
   });
   const nums = [...document.querySelectorAll('[data-key]')].map(e => [e.dataset.key, e.textContent]);
+  const fonts = [...document.querySelectorAll('body *')]
+    .filter(e => [...e.childNodes].some(n => n.nodeType === 3 && n.textContent.trim()))
+    .map(e => [e.tagName + ': ' + e.textContent.trim().slice(0, 40), parseFloat(getComputedStyle(e).fontSize)]);
   const pre = document.createElement('pre');
   pre.id = 'probe';
-  pre.textContent = JSON.stringify({imgs, nums, height: document.documentElement.scrollHeight});
+  pre.textContent = JSON.stringify({imgs, nums, fonts, height: document.documentElement.scrollHeight});
   document.body.appendChild(pre);
 });
 </script>
@@ -273,3 +277,48 @@ def test_part_tree_rejects_a_joint_naming_a_missing_part():
     with pytest.raises(ArtifactError,
                        match=r"graph\.json: object cabinet3: joint 'cabinet3_drawer12_joint' names part 12"):
         trees_from_scene_json(doc, "graph.json")
+
+
+def test_all_text_is_at_least_12_px_at_100_percent_zoom(rendered):
+    """Page text by its computed font size; text inside a figure by the PNG's smallest text (recorded
+    when it was drawn) times how much the page scales the image."""
+    from simcheck.report._figure import MIN_TEXT_PX
+
+    small = [(what, px) for what, px in rendered["probe"]["fonts"] if px < MIN_TEXT_PX]
+    assert not small, f"page text under {MIN_TEXT_PX} px: {small[:5]}"
+    for im in rendered["probe"]["imgs"]:
+        assert im["text"], f"figure {im['figure']} does not record its smallest text"
+        shown = float(im["text"]) * im["rw"] / im["w"]
+        assert shown >= MIN_TEXT_PX - 0.01, f"figure {im['figure']}: smallest text {shown:.1f} px on the page"
+
+
+def test_units_are_shown_and_small_values_are_readable(rendered):
+    html = rendered["html"]
+    assert "rad|m" not in html
+    shown = [text for _, text in rendered["probe"]["nums"]]
+    assert not [t for t in shown if re.search(r"e-(0[7-9]|[1-9]\d)", t)], "a value below 1e-6 in e-notation"
+    assert 'data-key="cert.cabinet1_drawer4_joint.settled_linear_speed.value"' in html
+    m = re.search(r'data-key="cert.cabinet1_drawer4_joint.handle_path_deviation.value">[^<]*</span>&nbsp;(\w+)', html)
+    assert m and m.group(1) == "m"
+
+
+def test_the_report_lists_the_movable_joints_not_tested_and_why(rendered):
+    from simcheck.scene_joints import read_scene_joints
+
+    html = rendered["html"]
+    cert = json.loads((rendered["demo"] / "certificate.json").read_text())
+    tested = {t["joint"] for t in cert["tasks"]}
+    movable = {n for n, j in read_scene_joints(rendered["demo"] / "scene.urdf").items()
+               if j.type in ("prismatic", "revolute")}
+    assert "<h3>Movable joints not tested</h3>" in html
+    assert movable - tested, "the fixture tests every joint: nothing to list"
+    for joint in movable - tested:
+        assert f"<td><code>{joint}</code></td><td>not requested (no task names it)</td>" in html
+
+
+def test_the_report_says_what_a_certificate_does_not_promise_as_the_readme_does(rendered):
+    from simcheck.report._promises import DOES_NOT_PROMISE
+
+    readme = " ".join((Path(__file__).parents[2] / "README.md").read_text().split())
+    assert " ".join(DOES_NOT_PROMISE.split()) in readme
+    assert "What a certificate does not promise</h2><p>A certificate does <b>not</b> promise" in rendered["html"]

@@ -3,11 +3,13 @@ key-frame camera avoids walls."""
 
 from __future__ import annotations
 
+import io
 import json
 from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
+from PIL import Image
 import pytest
 
 from simcheck.report import ArtifactError
@@ -58,7 +60,7 @@ def test_malformed_urdf_is_rejected_naming_file_and_link(tmp_path):
         solids_from_urdf(cycle)
 
 
-@pytest.mark.parametrize("value, shown", [(0.123456, "0.1235"), (12345.678, "1.235e+04"), (3, "3"), (True, "yes"),
+@pytest.mark.parametrize("value, shown", [(0.123456, "0.1235"), (12345.678, "12350"), (3.553e-15, "0"), (6.604e-05, "0.00006604"), (2.5e7, "2.5e+07"), (3, "3"), (True, "yes"),
                                           (None, "–"), (float("inf"), "inf"), (-0.5, "-0.5")])
 def test_numbers_are_shown_with_four_significant_digits(value, shown):
     assert format_number(value) == shown
@@ -83,8 +85,29 @@ def test_key_frame_camera_turns_away_from_a_wall_that_blocks_the_preferred_view(
     handle[1, 0, 3] = 0.3
     rollout = SimpleNamespace(T_world_handle=handle, tool_pos=np.array([[0.5, 0.0, 0.0]]))
     target, eye_free = camera_for(rollout)
-    assert eye_free[1] > 0.5  # preferred side
-    wall = _box([0.8, 1.0, 1.0], [4.0, 0.1, 3.0])  # a wall between the handle and that side
+    assert eye_free[1] > 0.7  # preferred side (a small part: looked at from 1 m)
+    wall = _box([0.8, 0.6, 1.0], [4.0, 0.1, 3.0])  # a wall between the handle and that side
     target, eye = camera_for(rollout, [wall])
     assert not _segment_hits_box(eye, target + 0.3 * (eye - target) / np.linalg.norm(eye - target), wall)
-    assert eye[1] < 1.0 and not np.allclose(eye, eye_free)
+    assert eye[1] < 0.6 and not np.allclose(eye, eye_free)
+
+
+def test_views_cropped_alike_keep_their_framing():
+    from simcheck.report._figure import crop_alike, png_bytes
+
+    a, b = np.full((100, 200, 3), 255, np.uint8), np.full((100, 200, 3), 255, np.uint8)
+    a[40:50, 20:30] = 0                      # something left in one view, right in the other
+    b[60:70, 150:160] = 0
+    out = [np.asarray(Image.open(io.BytesIO(p)).convert("RGB")) for p in crop_alike([png_bytes(Image.fromarray(a), 12.0),
+                                                                                     png_bytes(Image.fromarray(b), None)])]
+    assert out[0].shape == out[1].shape
+    ya, xa = np.argwhere(out[0][:, :, 0] == 0).min(axis=0)
+    yb, xb = np.argwhere(out[1][:, :, 0] == 0).min(axis=0)
+    assert (yb - ya, xb - xa) == (20, 130)   # the same offsets as in the full views
+
+
+def test_a_smaller_part_is_looked_at_from_closer():
+    from simcheck.report._key_frames import CAMERA_DISTANCE, MIN_CAMERA_DISTANCE, camera_distance
+
+    assert MIN_CAMERA_DISTANCE <= camera_distance(0.5) < camera_distance(1.2) <= CAMERA_DISTANCE
+    assert camera_distance(0.01) == MIN_CAMERA_DISTANCE and camera_distance(10.0) == CAMERA_DISTANCE
