@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import hashlib
 import logging
 import time
 from pathlib import Path
@@ -25,6 +24,7 @@ import numpy as np
 from planners.config import PlannerConfig
 from planners.errors import TaskSpecError
 from planners.task import ALL_MOVABLE, OpenTask, PlanResult, PlanStatus, check_task, movable_joint_tasks, parse_tasks
+from scenes.description import file_stem
 from scenes.outcome import Outcome
 from simcheck.certificate import Certificate, TaskCertificate, software_versions
 from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, PhysicsConfig
@@ -145,7 +145,7 @@ class Session:
             from simcheck.given_plan import given_from_result, plan_path
             from simcheck.plan_file import write_plan
             write_plan(given_from_result(plan, self.plan_world.robot_max_velocity(), self.physics, self.robot_label),
-                       plan_path(out, _safe(task.joint)))
+                       plan_path(out, file_stem(task.joint)))
         t = time.perf_counter()
         check = recheck_plan(self.plan_world, plan, criteria)
         timings["recheck"] = time.perf_counter() - t
@@ -170,7 +170,7 @@ class Session:
         if out is not None and (images or video):
             handle = handle_link_for(w, task.joint, plan.grasp_link)
             camera = KeyFrameCamera(w, w.scene_link_pose(handle)[:3, 3], self._robot_side(plan), out / "images",
-                                    _safe(task.joint), video=video)
+                                    file_stem(task.joint), video=video)
         counter = {"n": 0}
         given = plan.method == "given"
         traced = tuple(i.name for i in w.scene_joints() if i.type in ("prismatic", "revolute", "continuous")) if given else ()
@@ -202,7 +202,7 @@ class Session:
             crit.extend(given_criteria(plan, trace, w.robot_max_velocity(), self.robot.max_acceleration, criteria))
         rel_rollout, rel_images = "", []
         if out is not None:
-            path = rollout.save(out / "rollouts" / f"{_safe(task.joint)}.npz")
+            path = rollout.save(out / "rollouts" / f"{file_stem(task.joint)}.npz")
             rel_rollout = str(path.relative_to(out))
             if camera is not None:
                 gif = camera.save_video() if video else None
@@ -243,20 +243,6 @@ class Session:
 def _robot_label(save_plan: bool | str) -> str:
     """The robot a saved plan names: ``save_plan`` when it is a robot spec path, else "default"."""
     return save_plan if isinstance(save_plan, str) and save_plan else "default"
-
-
-#: the longest file stem :func:`_safe` makes of a joint name (characters, before its hash suffix)
-_STEM_LENGTH = 100
-
-
-def _safe(name: str) -> str:
-    """A file stem for joint ``name``: the name itself when it is made of ``[A-Za-z0-9._-]`` and short;
-    otherwise the sanitised, shortened name plus 8 hex digits of its SHA-1, so two joints never share a
-    rollout or image file."""
-    safe = "".join(ch if ch.isascii() and (ch.isalnum() or ch in "-_.") else "_" for ch in name)
-    if safe == name and len(name) <= _STEM_LENGTH:
-        return name
-    return f"{safe[:_STEM_LENGTH]}-{hashlib.sha1(name.encode()).hexdigest()[:8]}"
 
 
 def _recorded_path(path, out_dir: Path | None) -> str:

@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from planners.task import parse_tasks
+from scenes.description import file_stem
 from scenes.outcome import Outcome
 from simcheck.perturbations import Perturbation, sample_perturbation
 from simcheck.perturbed_scene import write_perturbed_scene
@@ -88,7 +89,7 @@ def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics
             rollout = execute_task(world, plan, phys, requested_amount=requested,
                                    frame_callback=camera.snap if camera else None)
             if out is not None:
-                rollout.save(Path(out) / "rollouts" / f"{plan.task.joint}_sample{p.index}.npz")
+                rollout.save(Path(out) / "rollouts" / f"{file_stem(plan.task.joint)}_sample{p.index}.npz")
                 if camera is not None and video:
                     camera.save_video()
     except Exception as exc:       # a world that cannot be built or run is a failed sample, said why

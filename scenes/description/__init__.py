@@ -18,7 +18,7 @@ import lazy_loader
 __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "_errors": ["PartsceneError", "InputError", "DescriptionError"],
     "_atomic": ["write_text_atomic", "write_bytes_atomic", "write_with_atomic"],
-    "_naming": ["WORLD_LINK", "object_name", "link_name", "joint_name", "parse_link_name"],
+    "_naming": ["WORLD_LINK", "object_name", "link_name", "joint_name", "parse_link_name", "file_stem"],
     "_vocabulary": ["SCENE_CATEGORIES", "KNOWN_CATEGORIES", "FRONT_CATEGORIES", "PART_LABELS", "KNOWN_LABELS",
                     "LABEL_RGBA", "DEFAULT_RGBA"],
     "_poses": ["pose", "rot_x", "rot_y", "rot_z", "R_about", "T_about", "T_inverse", "T_translation",

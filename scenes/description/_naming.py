@@ -14,9 +14,10 @@ The joint is named after its child link. The joint that fixes an object's root p
 
 from __future__ import annotations
 
+import hashlib
 import re
 
-__all__ = ["WORLD_LINK", "object_name", "link_name", "joint_name", "parse_link_name"]
+__all__ = ["WORLD_LINK", "object_name", "link_name", "joint_name", "parse_link_name", "file_stem"]
 
 WORLD_LINK = "world"
 
@@ -52,3 +53,17 @@ def parse_link_name(name: str) -> dict | None:
     d = m.groupdict()
     return {"category": d["category"], "object_id": int(d["object_id"]),
             "label": d["label"], "part_id": int(d["part_id"])}
+
+
+#: the longest file stem :func:`file_stem` makes of a name (characters, before its hash suffix)
+STEM_LENGTH = 100
+
+
+def file_stem(name: str) -> str:
+    """A file stem for ``name`` (a joint's, for its rollout and images): the name itself when it is made of
+    ``[A-Za-z0-9._-]`` and at most :data:`STEM_LENGTH` long; otherwise the sanitised, shortened name plus
+    8 hex digits of its SHA-1, so two names never share a file. The one place names become file names."""
+    safe = "".join(ch if ch.isascii() and (ch.isalnum() or ch in "-_.") else "_" for ch in name)
+    if safe == name and len(name) <= STEM_LENGTH and name not in (".", ".."):
+        return name
+    return f"{safe[:STEM_LENGTH]}-{hashlib.sha1(name.encode()).hexdigest()[:8]}"

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image
 
+from scenes.description import file_stem
 from simcheck.errors import RolloutFormatError
 from simcheck.rollout import Rollout
 
@@ -31,7 +32,7 @@ def rollout_path(lay: DemoLayout, task: Mapping, key: str) -> Path | None:
     if ref:
         p = Path(ref)
         return p if p.is_absolute() else lay.root / p
-    p = lay.rollouts_dir / f"{key}.npz"
+    p = lay.rollouts_dir / f"{file_stem(key)}.npz"
     return p if p.exists() else None
 
 
