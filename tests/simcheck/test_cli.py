@@ -1,5 +1,6 @@
 """The ``simcheck`` CLI: exit codes 0 / 1 / 2 and messages that say why (some runs in a subprocess)."""
 
+import hashlib
 import json
 import os
 import subprocess
@@ -84,6 +85,13 @@ def test_certified_drawer_exits_0_and_writes_the_certificate(tmp_path, capsys):
     assert (tmp_path / doc["tasks"][0]["rollout"]).is_file()
     assert all((tmp_path / p).is_file() for p in doc["tasks"][0]["images"])
     assert "certified" in capsys.readouterr().out
+    assert doc["files"]["scene"]["sha256"] == hashlib.sha256(CAB.read_bytes()).hexdigest()
+    # another run into the same folder: refused by name, unless --overwrite; then no stale image is left
+    argv = ["certify", str(CAB), "--task", f"open-drawer:{DRAWER}", "--out", str(tmp_path), "--seed", "3", "--no-images"]
+    assert main(argv) == 2
+    assert "it holds a run with images = True (this run: False)" in capsys.readouterr().err
+    assert main(argv + ["--overwrite"]) == 0
+    assert not (tmp_path / "images").exists() and json.loads((tmp_path / "certificate.json").read_text())["ok"]
 
 
 def test_wrong_estimate_against_the_truth_exits_1(tmp_path):
@@ -104,6 +112,7 @@ def test_scenario_runs_tasks_in_sequence_with_the_world_state_carried(tmp_path):
     code = main(["run", str(sc), "--out", str(tmp_path / "o"), "--no-images"])
     doc = json.loads((tmp_path / "o" / "certificate.json").read_text())
     assert code == 0, [t["reason"] for t in doc["tasks"]]
+    assert doc["files"]["scenario"]["sha256"] == hashlib.sha256(sc.read_bytes()).hexdigest()
     first, second = doc["tasks"]
     assert first["start_state"][DOOR] == pytest.approx(0.0, abs=1e-3)
     # the door opened by the first task is still open when the second starts
