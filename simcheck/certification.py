@@ -199,7 +199,8 @@ class Session:
             from simcheck.plan_expectations import ArticulationTrace
             trace = ArticulationTrace(traced, np.asarray(trace_rows, dtype=float).reshape(rollout.n, len(traced)),
                                       rollout.t, rollout.segment, rollout.segment_names)
-            crit.extend(given_criteria(plan, trace, w.robot_max_velocity(), self.robot.max_acceleration, criteria))
+            crit.extend(given_criteria(plan, trace, w.robot_max_velocity(), self.robot.max_acceleration, criteria,
+                                       dict(zip(rollout.robot_joint_names, rollout.robot_joint_units))))
         rel_rollout, rel_images = "", []
         if out is not None:
             path = rollout.save(out / "rollouts" / f"{file_stem(task.joint)}.npz")

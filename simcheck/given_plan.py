@@ -227,11 +227,13 @@ def plan_path(out: Path, joint_stem: str) -> Path:
 
 
 
-def given_criteria(plan: PlanResult, trace, vmax_urdf: np.ndarray, amax, criteria: CriteriaConfig = DEFAULT_CRITERIA):
+def given_criteria(plan: PlanResult, trace, vmax_urdf: np.ndarray, amax, criteria: CriteriaConfig = DEFAULT_CRITERIA,
+                   units=None):
     """The criteria a given plan adds to a planned task's: its expectation for the task joint met
     (:func:`simcheck.plan_expectations.expectation_met`), every other articulation still
     (:func:`~simcheck.plan_expectations.articulations_still`; ``trace`` an ArticulationTrace of the execution)
-    and its timing within ``vmax_urdf`` (dof,) and ``amax`` (dof,) (:func:`simcheck.plan_timing.timing_criteria`)."""
+    and its timing within ``vmax_urdf`` (dof,) and ``amax`` (dof,) (:func:`simcheck.plan_timing.timing_criteria`;
+    ``units``: robot joint name -> "m" or "rad")."""
     from simcheck.plan_expectations import articulations_still, expectation_met
     from simcheck.plan_timing import timing_criteria
 
@@ -243,5 +245,5 @@ def given_criteria(plan: PlanResult, trace, vmax_urdf: np.ndarray, amax, criteri
             if s.expect.joint == plan.task.joint:
                 out.append(expectation_met(trace, i, s.expect, criteria))
     out.append(articulations_still(trace, expected, criteria))
-    out.extend(timing_criteria(plan.segments, plan.joint_names, vmax_urdf, amax, criteria))
+    out.extend(timing_criteria(plan.segments, plan.joint_names, vmax_urdf, amax, criteria, units))
     return tuple(out)

@@ -26,10 +26,11 @@ from simcheck.criteria import CriterionResult, _judge
 __all__ = ["waypoint_gap", "joint_speed", "joint_acceleration", "timing_criteria"]
 
 
-def waypoint_gap(segments, names, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
-    """Largest joint step, rad or m, between consecutive waypoints of ``segments`` (each ``q`` (n, dof),
-    columns ``names``), across segment boundaries too; at most ``c.max_waypoint_gap``."""
-    worst, where = 0.0, ""
+def waypoint_gap(segments, names, c: CriteriaConfig = DEFAULT_CRITERIA, units=None) -> CriterionResult:
+    """Largest joint step between consecutive waypoints of ``segments`` (each ``q`` (n, dof), columns
+    ``names``), across segment boundaries too; at most ``c.max_waypoint_gap``. The unit is the worst joint's
+    (``units``: joint name -> "m" or "rad"; "rad" when unknown)."""
+    worst, where, unit = 0.0, "", "rad"
     prev = None
     for seg in segments:
         q = seg.q if prev is None else np.concatenate([prev[None], seg.q])
@@ -39,11 +40,12 @@ def waypoint_gap(segments, names, c: CriteriaConfig = DEFAULT_CRITERIA) -> Crite
             if step[k, j] > worst:
                 i = k if prev is None else k - 1          # the waypoint the step leads to
                 worst = float(step[k, j])
-                where = (f"segment {seg.name!r}: joint {names[j]} steps {worst:.3f} between waypoints "
+                unit = (units or {}).get(names[j], "rad")
+                where = (f"segment {seg.name!r}: joint {names[j]} steps {worst:.3f} {unit} between waypoints "
                          + (f"{i} and {i + 1}, t={seg.t[i]:.3f}-{seg.t[i + 1]:.3f} s" if i >= 0 else
                             "(from the previous segment's last waypoint to this one's first, at t=0)"))
         prev = seg.q[-1]
-    return _judge("waypoint_gap", worst, c.max_waypoint_gap, "<=", "rad|m",
+    return _judge("waypoint_gap", worst, c.max_waypoint_gap, "<=", unit,
                   "largest joint step between consecutive waypoints (the controller interpolates the rest)",
                   f"{where}: waypoints too far apart for the controller (at most {c.max_waypoint_gap:g}); give denser "
                   f"waypoints", where)
@@ -114,7 +116,9 @@ def joint_acceleration(segments, names, amax, c: CriteriaConfig = DEFAULT_CRITER
                   f"{where}: beyond what the robot can do (the robot is at rest at each segment's ends)", where)
 
 
-def timing_criteria(segments, names, vmax, amax, c: CriteriaConfig = DEFAULT_CRITERIA) -> tuple[CriterionResult, ...]:
-    """:func:`waypoint_gap`, :func:`joint_speed` and :func:`joint_acceleration` of timed ``segments``."""
-    return (waypoint_gap(segments, names, c), joint_speed(segments, names, vmax, c),
+def timing_criteria(segments, names, vmax, amax, c: CriteriaConfig = DEFAULT_CRITERIA,
+                    units=None) -> tuple[CriterionResult, ...]:
+    """:func:`waypoint_gap`, :func:`joint_speed` and :func:`joint_acceleration` of timed ``segments``
+    (``units``: joint name -> "m" or "rad")."""
+    return (waypoint_gap(segments, names, c, units), joint_speed(segments, names, vmax, c),
             joint_acceleration(segments, names, amax, c))

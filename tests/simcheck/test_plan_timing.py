@@ -39,9 +39,9 @@ def test_a_smooth_plan_passes_every_timing_criterion():
 
 def test_waypoints_too_far_apart_fail_naming_segment_time_and_joint():
     seg = _seg("pull", [[0.0, 0.0], [0.05, 0.0], [0.3, 0.0]], [0.0, 0.5, 1.5])
-    r = waypoint_gap([_ramp("reach", 0.2, 0.0), seg], NAMES)
-    assert not r.passed and r.value == pytest.approx(0.25)
-    assert "segment 'pull': joint x steps 0.250 between waypoints 1 and 2, t=0.500-1.500 s" in r.detail
+    r = waypoint_gap([_ramp("reach", 0.2, 0.0), seg], NAMES, units={"x": "m"})
+    assert not r.passed and r.value == pytest.approx(0.25) and r.unit == "m"      # the worst joint's unit
+    assert "segment 'pull': joint x steps 0.250 m between waypoints 1 and 2, t=0.500-1.500 s" in r.detail
 
 
 def test_too_fast_fails_naming_segment_time_and_joint():
