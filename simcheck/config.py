@@ -193,7 +193,8 @@ CRITERIA_UNITS = {"opened_fraction": "", "opened_overshoot": "", "settled_linear
                   "settled_angular_speed": "rad/s", "handle_path_tolerance": "m", "contact_force_tolerance": "N",
                   "contact_penetration_tolerance": "m", "grasp_slip_tolerance": "m",
                   "joint_limit_tolerance": "rad or m", "plan_penetration_tolerance": "m",
-                  "recheck_resolution": "rad or m"}
+                  "recheck_resolution": "rad or m", "max_waypoint_gap": "rad or m", "acceleration_window": "s",
+                  "articulation_tolerance": "m or rad"}
 
 DEFAULT_PHYSICS = PhysicsConfig()
 DEFAULT_CRITERIA = CriteriaConfig()

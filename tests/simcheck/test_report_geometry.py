@@ -111,3 +111,12 @@ def test_a_smaller_part_is_looked_at_from_closer():
 
     assert MIN_CAMERA_DISTANCE <= camera_distance(0.5) < camera_distance(1.2) <= CAMERA_DISTANCE
     assert camera_distance(0.01) == MIN_CAMERA_DISTANCE and camera_distance(10.0) == CAMERA_DISTANCE
+
+
+def test_every_criteria_threshold_has_a_unit():
+    import dataclasses
+
+    from simcheck.config import CRITERIA_UNITS, CriteriaConfig
+
+    numeric = {f.name for f in dataclasses.fields(CriteriaConfig) if f.type in ("float", float)}
+    assert numeric == set(CRITERIA_UNITS)
