@@ -340,7 +340,10 @@ def test_recon_build_interrupted_by_ctrl_c_leaves_nothing(tmp_path):
 
     scan = _write_ply(tmp_path / "scan.ply", _scan_props())
     labels = _write_labels(tmp_path / "labels.json", LABELS)
-    code = ("import sys, time, recon.pipeline as p\n"
+    # a shell starts background jobs with SIGINT ignored, and children inherit that: give the child the
+    # handler an interactive user's Ctrl-C meets
+    code = ("import signal, sys, time, recon.pipeline as p\n"
+            "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
             "p.reconstruct_scan = lambda *a, **k: time.sleep(60)\n"
             "from recon.cli import main\nsys.exit(main(sys.argv[1:]))\n")
     proc = subprocess.Popen([sys.executable, "-c", code, "build", str(scan), "--labels", str(labels),
