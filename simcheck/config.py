@@ -194,7 +194,7 @@ CRITERIA_UNITS = {"opened_fraction": "", "opened_overshoot": "", "settled_linear
                   "contact_penetration_tolerance": "m", "grasp_slip_tolerance": "m",
                   "joint_limit_tolerance": "rad or m", "plan_penetration_tolerance": "m",
                   "recheck_resolution": "rad or m", "max_waypoint_gap": "rad or m", "acceleration_window": "s",
-                  "articulation_tolerance": "m or rad"}
+                  "articulation_tolerance": "m or rad", "rest_contact_slack": "m"}
 
 DEFAULT_PHYSICS = PhysicsConfig()
 DEFAULT_CRITERIA = CriteriaConfig()
