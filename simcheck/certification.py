@@ -198,7 +198,8 @@ class Session:
             from simcheck.given_plan import given_criteria
             from simcheck.plan_expectations import ArticulationTrace
             trace = ArticulationTrace(traced, np.asarray(trace_rows, dtype=float).reshape(rollout.n, len(traced)),
-                                      rollout.t, rollout.segment, rollout.segment_names)
+                                      rollout.t, rollout.segment, rollout.segment_names,
+                                      tuple("m" if w.scene_joint(n).type == "prismatic" else "rad" for n in traced))
             crit.extend(given_criteria(plan, trace, w.robot_max_velocity(), self.robot.max_acceleration, criteria,
                                        dict(zip(rollout.robot_joint_names, rollout.robot_joint_units))))
         rel_rollout, rel_images = "", []

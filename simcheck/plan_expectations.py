@@ -29,6 +29,7 @@ class ArticulationTrace:
         q: (n, J) their values, m or rad, at the rollout's n samples.
         t: (n,) seconds.  segment: (n,) index of the plan segment each sample belongs to (-1: after the plan).
         segment_names: the plan's segment names.
+        units: (J,) "m" (prismatic) or "rad" per joint; () when unknown (then "rad").
     """
 
     joints: tuple[str, ...]
@@ -36,6 +37,7 @@ class ArticulationTrace:
     t: np.ndarray
     segment: np.ndarray
     segment_names: tuple[str, ...]
+    units: tuple[str, ...] = ()
 
     def value(self, joint: str) -> np.ndarray:
         """(n,) the values of ``joint``."""
@@ -75,10 +77,10 @@ def expectation_met(trace: ArticulationTrace, i: int, e: Expectation, c: Criteri
 
 def articulations_still(trace: ArticulationTrace, expected: dict[int, set[str]],
                         c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
-    """Largest move, m or rad, of a scene joint during a segment (or the hold after the plan) whose
+    """Largest move of a scene joint (in its unit: ``trace.units``) during a segment (or the hold after the plan) whose
     expectations (``expected``: segment index -> joint names) do not name it; at most
     ``c.articulation_tolerance``."""
-    worst, where = 0.0, ""
+    worst, where, unit = 0.0, "", "rad"
     executed = np.flatnonzero(trace.segment >= 0)
     for i in [*range(len(trace.segment_names)), -1]:
         idx = np.flatnonzero(trace.segment == i)
@@ -93,8 +95,9 @@ def articulations_still(trace: ArticulationTrace, expected: dict[int, set[str]],
                 continue
             k = int(np.argmax(moved[:, j]))
             worst = float(moved[k, j])
+            unit = trace.units[j] if trace.units else "rad"
             seg = f"segment {trace.segment_names[i]!r}" if i >= 0 else "the hold after the plan"
-            where = (f"{seg} moved scene joint {joint} by {worst:.3f} (t={trace.t[idx[k]]:.2f} s) without an "
+            where = (f"{seg} moved scene joint {joint} by {worst:.3f} {unit} (t={trace.t[idx[k]]:.2f} s) without an "
                      "expectation naming it")
-    return _judge("articulations_still", worst, c.articulation_tolerance, "<=", "m|rad",
+    return _judge("articulations_still", worst, c.articulation_tolerance, "<=", unit,
                   "largest move of a scene joint in a segment that does not expect it", where, where)

@@ -34,6 +34,8 @@ def test_the_wrong_drawer_opened_fails_both_naming_segment_and_joint():
     s = articulations_still(t, {1: {"drawer_a"}})
     assert not s.passed and s.value == pytest.approx(0.29)
     assert "segment 'pull' moved scene joint drawer_b by 0.290" in s.detail
+    drawers = ArticulationTrace(t.joints, t.q, t.t, t.segment, t.segment_names, units=("m", "m"))
+    assert articulations_still(drawers, {1: {"drawer_a"}}).unit == "m"      # the moved joint's unit
 
 
 def test_a_drawer_that_drifts_after_the_plan_or_starts_elsewhere_fails():
