@@ -8,7 +8,9 @@ Where the handle is looked for, in order:
 4. collision geometry of the moving link whose ``name`` attribute contains "handle";
 5. geometry of the moving link (or links fixed below it) that stands out of its front: beyond the outer
    face of its largest geometry (the panel), along the way the part opens, and small beside it (a knob,
-   a handle exported as unnamed mesh geometry of the door).
+   a handle exported as unnamed mesh geometry of the door);
+6. when the part has mesh geometry and nothing of 5: the surface that stands out of its front face (a
+   door exported as one mesh, panel and handle together; :mod:`planners.handle_surface`).
 
 No handle raises :class:`planners.errors.HandleNotFoundError` naming the file and the joint.
 
@@ -58,7 +60,7 @@ class HandleGrasp:
         T_link_grasps: tuple of (4, 4) candidate grasp frames in the moving link's frame.
         bar_width: float, metres, extent of the bar across the finger closing direction (0 if unknown).
         source: how the handle was found ("grasp_link", "grasp_point", "handle link", "fixed child",
-            "named geometry", "protruding geometry").
+            "named geometry", "protruding geometry", "protruding surface").
     """
 
     moving_link: str
@@ -182,7 +184,7 @@ def _protruding(scene, joint, cands, T_world_moving, values, direction) -> list:
     if len(cands) < 2:
         return []
     sizes = [_box_extent(c[1]) for c in cands]
-    centre = np.mean([(T_world_moving @ c[2])[:3, 3] for c in cands], axis=0)
+    centre = np.mean([(T_world_moving @ c[2] @ np.append(_bar(c[1])[1], 1.0))[:3] for c in cands], axis=0)
     v = direction * outward_direction(scene, joint, centre, values)
     if np.linalg.norm(v) < 1e-9:
         return []
@@ -286,17 +288,31 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
             axis = None if a is None else best[2][:3, :3] @ a
         source = "grasp_point"
     else:
+        surface = None
+        if not cands and source == "protruding geometry" and any(c[1].kind is ShapeKind.MESH for c in every):
+            from planners.handle_surface import protruding_surface
+            centre = np.mean([(T_world_moving @ c[2] @ np.append(_bar(c[1])[1], 1.0))[:3] for c in every], axis=0)
+            v = direction * outward_direction(scene, task.joint, centre, values)
+            if np.linalg.norm(v) > 1e-9:
+                surface = protruding_surface(every, T_world_moving[:3, :3].T @ v, j.type == "prismatic")
+        if surface is not None:
+            cands = [c for c in every if (c[0], c[3]) in set(surface.geoms)]
+            source = "protruding surface"
         if not cands:
             raise HandleNotFoundError(
                 f"{where}: no handle found on moving link {moving!r} (no fixed child link named '*handle*', "
                 f"no single fixed child, no collision geometry named '*handle*', no "
                 f"geometry standing out of its front): nothing to pull, and a closed front's free edge leaves no "
                 f"room for a finger behind it; give OpenTask.grasp_point or grasp_link")
-        best = _outermost(scene, task.joint, cands, T_world_moving, values, direction)
-        grasp_link, depth_geom = best[0], best
-        a, centre, width = _bar(best[1])
-        p_link = (best[2] @ np.append(centre, 1.0))[:3]
-        axis = None if a is None else best[2][:3, :3] @ a
+        if surface is not None:      # a handle that is part of the front's own mesh
+            grasp_link, depth_geom = cands[0][0], None
+            p_link, axis, width = surface.p, surface.axis, surface.width
+        else:
+            best = _outermost(scene, task.joint, cands, T_world_moving, values, direction)
+            grasp_link, depth_geom = best[0], best
+            a, centre, width = _bar(best[1])
+            p_link = (best[2] @ np.append(centre, 1.0))[:3]
+            axis = None if a is None else best[2][:3, :3] @ a
     p_world = (T_world_moving @ np.append(p_link, 1.0))[:3]
     v = direction * outward_direction(scene, task.joint, p_world, values)
     if np.linalg.norm(v) < cfg.min_handle_lever * (1.0 if j.type == "prismatic" else 1.0):

@@ -12,11 +12,13 @@ links that can move. Link and joint names are kept; poses are of the closed stat
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
-from scenes.description import Inertial, Joint, Link, SceneModel, urdf_text, urdf_xml, xml_text
+from scenes.description import Inertial, Joint, Link, SceneModel, ShapeKind, urdf_text, urdf_xml, xml_text
 
 __all__ = ["ANCHOR", "SceneBody", "scene_bodies"]
 
@@ -62,8 +64,42 @@ def _subtree_urdf(model: SceneModel, top: Joint) -> str:
     return urdf_text(SceneModel(top.name, links, joints, model.materials))
 
 
-def scene_bodies(model: SceneModel) -> list[SceneBody]:
-    """The bodies of ``model``: the static links in link order, then the articulated subtrees in joint order."""
+MAX_PIECES = 64
+"""A moving link's collision mesh of 2..MAX_PIECES connected pieces is split into them (see :func:`scene_bodies`)."""
+
+
+def _pieces(link: Link, mesh_dir: Path, tag: str) -> Link:
+    """``link`` with each collision mesh made of several connected pieces replaced by one mesh per piece,
+    written to ``mesh_dir`` (OBJ, named from ``tag``); unreadable or single-piece meshes are kept."""
+    import trimesh
+    new = []
+    for k, c in enumerate(link.collisions):
+        if c.kind is ShapeKind.MESH:
+            try:
+                parts = trimesh.load(c.mesh, force="mesh").split(only_watertight=False)
+            except Exception:
+                parts = []
+            if 1 < len(parts) <= MAX_PIECES:
+                for i, part in enumerate(parts):
+                    f = Path(mesh_dir) / f"{tag}_{k}_{i}.obj"
+                    f.write_text(trimesh.exchange.obj.export_obj(part, include_normals=False, include_color=False,
+                                                                 include_texture=False))
+                    new.append(dataclasses.replace(c, mesh=str(f)))
+                continue
+        new.append(c)
+    return dataclasses.replace(link, collisions=tuple(new))
+
+
+def scene_bodies(model: SceneModel, mesh_dir=None) -> list[SceneBody]:
+    """The bodies of ``model``: the static links in link order, then the articulated subtrees in joint order.
+
+    With ``mesh_dir`` (a folder that lives while the bodies are loaded), each collision mesh of a moving
+    link made of several connected pieces (a door exported as one mesh, its panel and its handle) is split
+    into one mesh per piece there: Bullet collides a moving link's mesh as one convex hull, which would
+    fill the space between a panel and its handle bar (the gripper could not close around the bar)."""
+    if mesh_dir is not None:
+        moving = [name for name in model.links if model.is_moving(name)]
+        model = model.replaced(*(_pieces(model.links[name], mesh_dir, f"link{k}") for k, name in enumerate(moving)))
     bodies = [SceneBody(name, _static_urdf(model, link), model.T_world_link(name), False, ())
               for name, link in model.links.items() if not model.is_moving(name)]
     for j in model.joints.values():

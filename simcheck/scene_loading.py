@@ -84,15 +84,15 @@ def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig) -> LoadedSc
                              f"{pybullet_said(said)}") from exc
     joints, links = body_joint_table(c, whole)
     pb.removeBody(whole, physicsClientId=c)
-    try:
-        parts = scene_bodies(read_urdf(scene_urdf))
-    except DescriptionError as exc:
-        raise SceneLoadError(f"cannot split scene URDF {scene_urdf} into bodies: {exc}") from exc
     link_at: dict[str, tuple[int, int]] = {}
     names: dict[tuple[int, int], str] = {}
     static_pose: dict[str, np.ndarray] = {}
     joint_at: dict[str, tuple[int, int]] = {}
     with tempfile.TemporaryDirectory(prefix="partscene_scene_") as tmp:
+        try:
+            parts = scene_bodies(read_urdf(scene_urdf), mesh_dir=tmp)
+        except DescriptionError as exc:
+            raise SceneLoadError(f"cannot split scene URDF {scene_urdf} into bodies: {exc}") from exc
         for k, part in enumerate(parts):
             f = Path(tmp) / f"body{k}.urdf"
             f.write_text(part.urdf)

@@ -35,7 +35,8 @@ class FrontSpec:
     """One drawer or door. ``kind``: "drawer", "door_left" / "door_right" (vertical hinge on that side),
     "door_bottom" (hinged at its bottom edge, opens down), "door_top" (hinged at its top edge, opens up).
     ``cell``: (x0, x1, z0, z1) object frame, m. ``handle``: "bar" (own link), "mesh" (unnamed mesh geometry
-    of the moving link), "knob" (unnamed geometry of the moving link), "knob_link", "none". ``sign`` -1:
+    of the moving link), "merged" (the panel and its handle exported as one mesh), "knob" (unnamed geometry
+    of the moving link), "knob_link", "none". ``sign`` -1:
     axis flipped and range negative. ``frame``: "hinge" (joint frame at the hinge's lower/left end,
     unrotated), "rotated" (rotated joint frame at the hinge's upper/right end), "centre" (a drawer's: at
     its panel centre, rotated). ``limit``: rad or m (0: the default for the kind). ``continuous``: a door
@@ -115,12 +116,18 @@ def _box(centre, size, name=None) -> Geom:
     return Geom("box", _T(centre), size=[float(s) for s in size], name=name)
 
 
-def _u_handle_mesh(path: Path, length: float, stand: float, r: float) -> None:
-    """An OBJ file of a U-shaped bar along local x (length m), standing ``stand`` m out along -y."""
+def _u_handle_mesh(path: Path, length: float, stand: float, r: float, T=None, panel: Geom | None = None) -> None:
+    """An OBJ file of a U-shaped bar along local x (length m), standing ``stand`` m out along -y; with ``T``
+    (4, 4) its vertices moved by it, and with ``panel`` (a box Geom) that box in the same file: a front
+    exported as one mesh, panel and handle together."""
     import trimesh
     bar = trimesh.creation.box([length, 2 * r, 2 * r], _T((0, -stand, 0)))
     legs = [trimesh.creation.box([2 * r, stand, 2 * r], _T((s * (length / 2 - r), -stand / 2, 0))) for s in (-1, 1)]
     mesh = trimesh.util.concatenate([bar] + legs)
+    if T is not None:
+        mesh.apply_transform(T)
+    if panel is not None:
+        mesh = trimesh.util.concatenate([mesh, trimesh.creation.box(panel.size, panel.T)])
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(trimesh.exchange.obj.export_obj(mesh, include_normals=False, include_color=False,
                                                     include_texture=False))
@@ -170,10 +177,11 @@ def _handle_geoms(f: FrontSpec, panel, ft: float, mesh_name: str | None) -> list
         length = min(0.3, 0.6 * w)
     else:
         xe = x1 - 0.05 if f.kind == "door_left" else x0 + 0.05
-        zc = float(np.clip(1.0, z0 + 0.15, z1 - 0.15)) if h > 0.5 else (z0 + z1) / 2
+        length = min(0.3, 0.6 * h)
+        # a vertical bar at about 1 m, its ends 3 cm inside its own panel (clear of the front above or below)
+        zc = float(np.clip(1.0, z0 + length / 2 + 0.03, z1 - length / 2 - 0.03)) if h > 0.5 else (z0 + z1) / 2
         c = np.array([xe, y, zc])
         along = Rotation.from_euler("y", 90, degrees=True).as_matrix()      # local x -> world -z: vertical
-        length = min(0.3, 0.6 * h)
     if f.handle in ("knob", "knob_link"):
         return [Geom("cylinder", _T(c + [0, -0.012, 0], Rotation.from_euler("x", 90, degrees=True).as_matrix()),
                      size=[0.007, 0.024]),
@@ -246,11 +254,16 @@ def build_object(spec: ObjectSpec, folder: str | Path) -> BuiltObject:
             else:
                 T_obj_joint = _T(lo_end)
         mesh_name = None
+        length = min(0.3, 0.6 * ((px1 - px0) if f.kind != "door_left" and f.kind != "door_right" else (pz1 - pz0)))
         if f.handle == "mesh":
             mesh_name = f"meshes/pull_{i}.obj"
-            length = min(0.3, 0.6 * ((px1 - px0) if f.kind != "door_left" and f.kind != "door_right" else (pz1 - pz0)))
             _u_handle_mesh(out / mesh_name, length, 0.035, 0.01)
-        hgeoms = [] if f.handle == "none" else _handle_geoms(f, panel, ft, mesh_name)
+        hgeoms = [] if f.handle in ("none", "merged") else _handle_geoms(f, panel, ft, mesh_name)
+        if f.handle == "merged":       # panel and handle in one mesh, in the object frame
+            mesh_name = f"meshes/front_{i}.obj"
+            T_h = _handle_geoms(FrontSpec(f.kind, f.cell, "mesh"), panel, ft, mesh_name)[0].T
+            _u_handle_mesh(out / mesh_name, length, 0.035, 0.01, T_h, geoms[0])
+            geoms[0] = Geom("mesh", np.eye(4), mesh=mesh_name)
         T_joint_obj = np.linalg.inv(T_obj_joint)
         front_labels = {link: "drawer" if f.kind == "drawer" else "door"}
         if f.handle in ("bar", "knob_link"):

@@ -1,10 +1,11 @@
-"""The corpus: 23 articulated objects in other people's conventions (:mod:`thirdparty.build`).
+"""The corpus: 24 articulated objects in other people's conventions (:mod:`thirdparty.build`).
 
 Kinds covered: base and wall cabinets, kitchen units, drawer stacks, a dresser, a file cabinet,
 microwaves, refrigerators (stacked and side-by-side double doors), a dishwasher and an oven (bottom-hinged
 doors), a top-hinged wall flap, a wardrobe, a safe; double doors and stacked fronts that touch at rest
 (gap 0) or overlap by 1 mm; joints that open toward negative values; continuous hinges; rotated joint frames and frames at
-the far end of the hinge; handles as links, unnamed mesh geometry, knobs, or none.
+the far end of the hinge; handles as links, unnamed mesh geometry, one mesh with their panel, knobs, or
+none.
 
 ``FIXTURES`` names the few objects the test suite builds (a spread of those kinds); the benchmark builds
 all of them.
@@ -80,6 +81,10 @@ CATALOGUE: tuple = (
     O("double_door_overlapping", "cabinet", 0.9, 0.55, 0.8, elevation=0.1, gap=-0.001, names="camel",
       notes="exported with its doors overlapping 1 mm at rest", place=(1.3, 0.2, -10),
       fronts=(F("door_left", (0, 0.45, 0.1, 0.9), handle="mesh"), F("door_right", (0.45, 0.9, 0.1, 0.9)))),
+    O("one_mesh_fronts", "cabinet", 0.6, 0.5, 0.8, elevation=0.1, names="indexed", place=(1.3, -0.3, 15),
+      notes="each front's panel and handle exported as one mesh", gap=0.002,
+      fronts=(F("drawer", (0, 0.6, 0.7, 0.9), handle="merged"),
+              F("door_left", (0, 0.6, 0.1, 0.7), handle="merged", sign=-1))),
     O("corner_unit_rotated", "cabinet", 0.7, 0.55, 0.85, elevation=0.1, names="indexed", place=(1.2, 0.8, 60),
       fronts=(F("drawer", (0, 0.7, 0.75, 0.95), frame="centre", sign=-1),
               F("door_right", (0, 0.7, 0.1, 0.75), frame="rotated", handle="mesh", sign=-1))),

@@ -50,3 +50,25 @@ def test_a_front_without_a_handle_is_refused_naming_what_was_looked_for(tmp_path
     with pytest.raises(HandleNotFoundError, match="no geometry standing out of its front.: nothing to pull, and a closed "
                        "front.s free edge leaves no room for a finger behind it"):
         find_handle(s, OpenTask("door", o.fronts[0].joint), {}, CFG)
+
+
+@pytest.mark.parametrize("k, bar", [(0, [1, 0, 0]), (1, [0, 0, 1])])
+def test_a_handle_exported_in_one_mesh_with_its_panel_is_found_on_the_surface(k, bar, tmp_path):
+    """``one_mesh_fronts``: each front is one OBJ (panel + U bar): the grasp is at the bar's centre, 3.5 cm
+    out of the front, approaching into it, x along the bar (horizontal on the drawer, vertical on the door)."""
+    o = thirdparty.build_object(thirdparty.spec_named("one_mesh_fronts"), tmp_path)
+    f = o.fronts[k]
+    s = read_scene_urdf(o.urdf)
+    j = s.joints[f.joint]
+    direction = 1.0 if j.upper >= -j.lower else -1.0
+    h = find_handle(s, OpenTask("drawer" if f.kind == "drawer" else "door", f.joint), {}, CFG, direction)
+    assert h.source == "protruding surface"
+    body = next(link for link, label in o.labels.items() if label == "body")
+    T_body = s.T_world_link(body, {})               # the carcass frame: the object's axes, at its top-back corner
+    out = T_body[:3, :3] @ [0.0, -1.0, 0.0]
+    frames = [s.T_world_link(h.moving_link, {}) @ G for G in h.T_link_grasps]
+    T = min(frames[:4], key=lambda F: float(F[:3, 2] @ out))       # the level grasp at the bar (not backed off)
+    assert T[:3, 2] @ out < -0.99
+    assert abs(T[:3, 0] @ (T_body[:3, :3] @ bar)) > 0.95
+    p_obj = np.linalg.solve(T_body, np.append(T[:3, 3], 1.0))[:3]
+    assert p_obj[1] + 0.5 == pytest.approx(-0.02 - 0.035, abs=0.004)  # 3.5 cm out of the 2 cm panel (depth 0.5)

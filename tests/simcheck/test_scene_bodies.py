@@ -48,3 +48,18 @@ def test_static_meshes_collide_as_triangles(tmp_path):
                     '</collision></link></robot>')
     (body,) = scene_bodies(read_urdf(path))
     assert 'concave="yes"' in body.urdf and str((tmp_path / "m.obj").resolve()) in body.urdf
+
+
+def test_a_moving_mesh_of_several_pieces_is_split_into_them(tmp_path):
+    """A front exported as one mesh (panel + U handle: 4 pieces) becomes 4 collision meshes (Bullet would
+    collide the one mesh as its convex hull, filling the space behind the bar); the static carcass is kept."""
+    import thirdparty
+    o = thirdparty.build_object(thirdparty.spec_named("one_mesh_fronts"), tmp_path / "obj")
+    (tmp_path / "pieces").mkdir()
+    bodies = {b.name: b for b in scene_bodies(read_urdf(o.urdf), mesh_dir=tmp_path / "pieces")}
+    door = o.fronts[1]
+    model = _body_model(tmp_path, bodies[door.joint])
+    cols = model.links[door.moving_link].collisions
+    assert len(cols) == 4 and all(c.kind.value == "mesh" and Path(c.mesh).parent == tmp_path / "pieces" for c in cols)
+    kept = {b.name: b for b in scene_bodies(read_urdf(o.urdf))}       # without a folder: unchanged
+    assert len(_body_model(tmp_path, kept[door.joint]).links[door.moving_link].collisions) == 1
