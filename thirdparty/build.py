@@ -263,7 +263,8 @@ def build_object(spec: ObjectSpec, folder: str | Path) -> BuiltObject:
             mesh_name = f"meshes/front_{i}.obj"
             T_h = _handle_geoms(FrontSpec(f.kind, f.cell, "mesh"), panel, ft, mesh_name)[0].T
             _u_handle_mesh(out / mesh_name, length, 0.035, 0.01, T_h, geoms[0])
-            geoms[0] = Geom("mesh", np.eye(4), mesh=mesh_name)
+            geoms[0] = Geom("mesh", np.eye(4), mesh=mesh_name,
+                            solid=(geoms[0].T[:3, 3], float(np.prod(geoms[0].size))))
         T_joint_obj = np.linalg.inv(T_obj_joint)
         front_labels = {link: "drawer" if f.kind == "drawer" else "door"}
         if f.handle in ("bar", "knob_link"):

@@ -34,11 +34,13 @@ class Geom:
     """A shape at ``T`` (4, 4), in the frame of the link that carries it once written. ``kind`` "box" (size
     (3,) m), "cylinder" (radius, length; axis local z), "sphere" (radius) or "mesh" (relative file name)."""
 
-    def __init__(self, kind: str, T: np.ndarray, size=None, mesh: str | None = None, name: str | None = None):
+    def __init__(self, kind: str, T: np.ndarray, size=None, mesh: str | None = None, name: str | None = None,
+                 solid=None):
         self.kind, self.T, self.size, self.mesh, self.name = kind, np.asarray(T, float), size, mesh, name
+        self.solid = solid          # a mesh's (centre (3,) in its frame, volume m^3), for the inertial
 
     def moved(self, T_new_old: np.ndarray) -> "Geom":
-        return Geom(self.kind, T_new_old @ self.T, self.size, self.mesh, self.name)
+        return Geom(self.kind, T_new_old @ self.T, self.size, self.mesh, self.name, self.solid)
 
     def xml(self, tag: str) -> str:
         s = self.size
@@ -54,8 +56,11 @@ class Geom:
         return f'    <{tag}{name}><origin {rpy_xyz(self.T)}/><geometry>{g}</geometry></{tag}>\n'
 
     def volume_box(self) -> tuple[np.ndarray, float]:
-        """(centre (3,), volume m^3) of the shape, a mesh counted as a 2 cm cube (for inertials only)."""
+        """(centre (3,), volume m^3) of the shape, a mesh counted as ``solid`` or a 2 cm cube at its origin (for
+        inertials only)."""
         s = self.size
+        if self.kind == "mesh" and self.solid is not None:
+            return (self.T @ np.append(self.solid[0], 1.0))[:3], float(self.solid[1])
         vol = {"box": lambda: float(np.prod(s)), "cylinder": lambda: float(np.pi * s[0] ** 2 * s[1]),
                "sphere": lambda: float(4 / 3 * np.pi * s[0] ** 3)}.get(self.kind, lambda: 8e-6)()
         return self.T[:3, 3], vol
