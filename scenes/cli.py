@@ -1,17 +1,20 @@
 """``scenes`` command line: ``scenes list`` and ``scenes make NAME [--seed S] [--preset P] --out DIR``.
 
 Exit codes (:func:`scenes.outcome.exit_code`): 0 done; 2 bad arguments or a scene that cannot be made
-(the message says why); 3 an internal error (one line naming what failed; ``-v`` logs the traceback).
+(the message says why, also an ``--out`` holding something else: :mod:`scenes.output_folder`); 3 an internal
+error (one line naming what failed; ``-v`` logs the traceback); 130 interrupted. ``--out`` is written as a whole.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
-from .command_line import root_parser, setup_logging
+from .command_line import add_output_arguments, root_parser, setup_logging
+from .description import InputError
 from .errors import ScenesError
-from .outcome import Outcome, exit_code, internal_error
+from .outcome import Outcome, exit_code, internal_error, interrupted
 
 __all__ = ["main"]
 
@@ -24,7 +27,7 @@ def _parser() -> argparse.ArgumentParser:
     mk.add_argument("name", help="scene name (see `scenes list`)")
     mk.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     mk.add_argument("--preset", default="clean", help="scan preset: clean | realistic (default clean)")
-    mk.add_argument("--out", required=True, help="output directory")
+    add_output_arguments(mk, "truth.urdf, truth.json, scan.ply, labels.json, scan.npz, scan_meta.json, previews")
     mk.add_argument("--no-scan", action="store_true", help="write the ground truth only")
     mk.add_argument("--no-previews", action="store_true", help="skip the preview PNGs")
     return ap
@@ -41,17 +44,24 @@ def main(argv: list[str] | None = None) -> int:
                 sys.stdout.write(f"{name:10s} {desc}\n")
             return exit_code([])
         from .api import make_scene
+        from .output_folder import output_folder
 
-        made = make_scene(args.name, seed=args.seed, preset=args.preset, out=args.out,
-                          scan=not args.no_scan, previews=not args.no_previews)
-    except ScenesError as e:
+        settings = {"name": args.name, "seed": args.seed, "preset": args.preset, "scan": not args.no_scan,
+                    "previews": not args.no_previews}
+        with output_folder(args.out, "scenes make", inputs={}, settings=settings, overwrite=args.overwrite) as staging:
+            made = make_scene(args.name, seed=args.seed, preset=args.preset, out=staging,
+                              scan=not args.no_scan, previews=not args.no_previews)
+        files = {key: Path(args.out) / Path(path).relative_to(staging) for key, path in made.files.items()}
+    except (ScenesError, InputError) as e:
         sys.stderr.write(f"scenes: error: {e}\n")
         return exit_code([Outcome.UNUSABLE])
+    except KeyboardInterrupt:
+        return interrupted("scenes", args.out)
     except Exception as e:
         return internal_error("scenes", f"running scenes {args.cmd}", e)
     if not args.quiet:
         n = len(made.scan) if made.scan is not None else 0
         sys.stdout.write(f"{args.name} seed {args.seed}: {len(made.scene.objects)} objects, {n} scan points\n")
-        for key, path in made.files.items():
+        for key, path in files.items():
             sys.stdout.write(f"  {key:13s} {path}\n")
     return exit_code([])

@@ -317,6 +317,18 @@ def test_recon_build_on_a_full_disk_exits_2_and_writes_nothing(tmp_path, capsys,
     assert sorted(p.name for p in tmp_path.iterdir()) == ["labels.json", "scan.ply"]
 
 
+@pytest.mark.parametrize("name", ["truth.urdf", "labels.json"])
+def test_scenes_make_refuses_an_out_holding_a_users_file(name, tmp_path, capsys):
+    from scenes.cli import main
+
+    (tmp_path / "out").mkdir()
+    (tmp_path / "out" / name).write_text("the user's")
+    assert main(["make", "kitchen", "--no-scan", "--no-previews", "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert f"out/{name}: --out" in err and "Traceback" not in err, err
+    assert (tmp_path / "out" / name).read_text() == "the user's"
+
+
 @pytest.mark.parametrize("name", ["scene.urdf", "truth.urdf"])
 def test_simcheck_certify_refuses_an_out_holding_a_users_file(name, tmp_path, capsys):
     from simcheck.cli import main
