@@ -98,9 +98,8 @@ def oriented_box(points: np.ndarray, *, min_thickness: float, upright_tolerance:
     points = np.asarray(points, dtype=np.float64)
     up = _upright_box(points)
     vol = lambda b: float(np.prod(np.maximum(b.extents, min_thickness)))  # noqa: E731
-    if vol(up) <= (1.0 + upright_tolerance) * vol(_pca_box(points)):
-        best = up                     # cheap accept: upright already as tight as the principal box
-    else:
-        free = _free_box(points)
-        best = up if vol(up) <= (1.0 + upright_tolerance) * vol(free) else free
+    # against the minimum-volume box, not the principal-axes one: the principal axes of a box seen on
+    # two or three faces run along its diagonals, and that box is no tighter than a wrong upright one
+    free = _free_box(points)
+    best = up if vol(up) <= (1.0 + upright_tolerance) * vol(free) else free
     return OrientedBox(best.T_world_box, np.maximum(best.extents, min_thickness))

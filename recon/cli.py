@@ -13,6 +13,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from recon.config import ScanConfig
 from recon.errors import ReconError
 from scenes.description import InputError
 from scenes.command_line import add_output_arguments, root_parser, setup_logging
@@ -31,6 +32,9 @@ def _parser() -> argparse.ArgumentParser:
     add_output_arguments(b, "scene.urdf, scene.srdf, graph.json, preview.png, scene.xml")
     b.add_argument("--level-floor", action="store_true", help="find the floor and the up direction first")
     b.add_argument("--seed", type=int, default=0)
+    b.add_argument("--min-part-points", type=int, default=None, metavar="N",
+                   help=f"skip parts with fewer points (default {ScanConfig.min_part_points}; handles and knobs "
+                        f"are kept from {ScanConfig.handle_min_part_points})")
     b.add_argument("--no-preview", action="store_true", help="skip preview.png")
     b.add_argument("--mjcf", action="store_true", help="also write scene.xml (MJCF, for MuJoCo)")
     return p
@@ -51,11 +55,17 @@ def main(argv: list[str] | None = None) -> int:
         from recon.scan import read_scan
         from scenes.output_folder import output_folder
 
+        config = ReconConfig()
+        if args.min_part_points is not None:
+            if args.min_part_points < 3:
+                print(f"recon: error: --min-part-points {args.min_part_points}: a part needs at least 3 points "
+                      "to be fitted; give 3 or more", file=sys.stderr)
+                return exit_code([Outcome.UNUSABLE])
+            config = config.replace(min_part_points=args.min_part_points)
         settings = {"level_floor": args.level_floor, "seed": args.seed, "preview": not args.no_preview,
-                    "mjcf": args.mjcf}
+                    "mjcf": args.mjcf, "min_part_points": config.scan.min_part_points}
         with output_folder(args.out, "recon build", inputs={"scan": args.scan, "labels": args.labels},
                            settings=settings, overwrite=args.overwrite) as staging:
-            config = ReconConfig()
             scan = read_scan(args.scan, args.labels, config)
             rec = reconstruct_scan(scan, config=config, level_floor=args.level_floor, seed=args.seed,
                                    progress=progress)

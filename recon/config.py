@@ -31,7 +31,11 @@ class ScanConfig:
     """Reading and cleaning the scan (scan.py, outliers.py)."""
 
     min_part_points: int = 20
-    """A part with fewer points is skipped with a warning naming it (too few to fit a primitive)."""
+    """A part with fewer points is skipped with a warning naming it (too few to fit a primitive);
+    ``recon build --min-part-points``."""
+    handle_min_part_points: int = 8
+    """... but a handle or knob is kept from this many points (at ScanNet density a handle shows 9-14):
+    its bar is placed on its mount's face where its points are (handle_shapes.py)."""
     max_scene_extent: float = 60.0
     """A scan whose bounding box is larger than this (m) is refused: it is almost surely millimetres."""
     outlier_neighbors: int = 16
@@ -93,9 +97,26 @@ class FittingConfig:
     density is occlusion (a mattress in front of a headboard's lower half), not the panel's edge."""
     front_edge_min_points: int = 150
     """... a front face with fewer points keeps the percentile extents."""
+    front_max_tilt: float = 0.2
+    """A front (door, drawer front) stands: one of its in-plane axes is within this (rad) of the vertical;
+    a board tilted further is measured as a slab, not given a front's board behind its face."""
     front_thickness: float = 0.018
     """Thickness (m) of a noisy vertical panel (door / drawer front): its seen face is the median of that
     face's points and the panel extends this far behind it (18 mm board, as ``carcass_wall``)."""
+    seen_face_band: float = 0.02
+    """A box seen on several faces: the points (normals along an axis) within this (m) of an end of that
+    axis are the face there; it is placed at their median (fitting._seen_faces)."""
+    seen_face_max_turn: float = 0.3
+    """... and only if the normals of those points turn by at most this (the change of their in-plane
+    component, fitted linearly, across the face): a cylinder's side is not a face."""
+    slab_edge_band: float = 0.02
+    """A slab's (board's, table top's) edge points lie within this (m) of its outline in its plane; its
+    points farther in are its seen face's only (fitting._slab_box)."""
+    slab_max_tilt: float = 0.2
+    """... the slab's box is turned onto the plane of its seen face by at most this (rad)."""
+    slab_hidden_fraction: float = 0.05
+    """... a slab whose interior points reach deeper than 2.5σ behind its seen face in this share or more
+    shows its other face too: its thickness is measured as a box's, not from its edges."""
     min_face_points: int = 12
     """The opposite face needs this many points (and a fifth of the best face's) to join a noise estimate."""
     coverage_distance: float = 0.02

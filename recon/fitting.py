@@ -14,16 +14,20 @@ wrong primitive look good.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial import cKDTree
+from scipy.spatial.transform import Rotation
 
 from recon.bounding import oriented_box
-from recon.config import FittingConfig
+from recon.config import CoverageConfig, FittingConfig
+from recon.coverage import coverage, coverage_problems
 from recon.primitive import Primitive, PrimitiveKind
 
-__all__ = ["FitScore", "candidate_primitives", "score_primitive", "denoised_box", "dominant_yaw", "fit_part"]
+__all__ = ["FitScore", "candidate_primitives", "score_primitive", "denoised_box", "dominant_yaw", "fit_part",
+           "CoveredFit", "fit_part_covering"]
 
 # rotations making a box axis the local z of a cylinder: columns = (new x, new y, new z) in box axes
 _AXIS_PERM = {
@@ -95,7 +99,7 @@ def candidate_primitives(points: np.ndarray, config: FittingConfig,
         Tr, er = _box_in_frame(points, R_world_ref, config.min_thickness)
         return {f"{k}@ref": v for k, v in _templates(points, Tr, er, config).items()}
     out = _templates(points, T, ext, config)
-    yaw = None if normals is None else dominant_yaw(normals)
+    yaw = None if normals is None or "box" not in config.candidates else dominant_yaw(normals)
     if yaw is not None:
         # noise moves a minimum-area rectangle's corners; the faces' normals hold the yaw better
         Ty, ey = _box_in_frame(points, _yaw_frame(yaw), config.min_thickness)
@@ -194,6 +198,9 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
     lie beyond), its seen face at their median, and a ``front_thickness`` board behind it. A front on
     a clean scan thinner than that board (only its face was seen) gets the board behind its face.
 
+    A slab (a board, a table top) seen on one face and its edges gets its thickness from its edges
+    (:func:`_slab_box`); a box seen on two or three faces has each seen face pulled in like the best one.
+
     Returns (box, whether the front rule placed it).
     """
     if prim.kind is not PrimitiveKind.BOX:
@@ -223,8 +230,9 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
                           prim.T_world_part[:3, k])
         lo, hi = -prim.size / 2, prim.size / 2
         if side is None or prim.size[k] >= config.front_thickness or not _vertical_panel(
-                lo, hi, k, prim.T_world_part[:3, k], config):
-            return prim, False
+                lo, hi, k, prim.T_world_part[:3, :3], config):
+            slab = _slab_box(prim, q, k, bool(f % 2), config)
+            return (prim, False) if slab is None else (slab, False)
         # (a face-only cloud got min_thickness about the face: the face is the median of its points)
         seen = float(np.median(q[_facing(normals, seen_mask, prim.T_world_part[:3, k], config), k]))
         lo, hi = lo.copy(), hi.copy()
@@ -234,17 +242,22 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
     hi = np.percentile(q, 99.8, axis=0)
     wide = all(prim.size[a] >= config.rim_min_extent for a in range(3) if a != k)
     rim_lo, rim_hi = _rim_ends(q[:, k], normals, prim.T_world_part[:3, k], config) if wide else (False, False)
+    face_lo, face_hi = _seen_faces(q, k, normals, prim.T_world_part[:3, :3], lo[k], hi[k], config)
+    if _curved(q, seen_mask, k, normals, prim.T_world_part[:3, :3], config):
+        # a curved surface (a cylinder's side) spreads about its best face by its shape, not by noise
+        rim_lo = rim_hi = True
     if not rim_lo:
-        lo[k] += 2.9 * sigma        # depth noise runs along the rays, i.e. across the seen face
+        # depth noise runs along the rays, i.e. across the seen face: its median, or 2.9σ in
+        lo[k] = face_lo if face_lo != lo[k] else lo[k] + 2.9 * sigma
     if not rim_hi:
-        hi[k] -= 2.9 * sigma
+        hi[k] = face_hi if face_hi != hi[k] else hi[k] - 2.9 * sigma
     if hi[k] - lo[k] < config.min_thickness:
         # a panel: its plane is the median of its points (noise is symmetric about the surface)
         seen = float(np.median(r))
         lo[k], hi[k] = seen - config.min_thickness / 2, seen + config.min_thickness / 2
     face_mask = _facing(normals, seen_mask, prim.T_world_part[:3, k], config)
     side = _seen_side(normals, face_mask, prim.T_world_part[:3, k])
-    front = side is not None and _vertical_panel(lo, hi, k, prim.T_world_part[:3, k], config)
+    front = side is not None and _vertical_panel(lo, hi, k, prim.T_world_part[:3, :3], config)
     if front:
         # a front (door, drawer front) seen from one side: its in-plane edges at the half-density of its
         # face, its seen face at the median of that face's points, the board's thickness behind it
@@ -255,6 +268,14 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
                     lo[a] = max(lo[a], min(edges[0], lo[a] + config.front_edge_max_trim))
                     hi[a] = min(hi[a], max(edges[1], hi[a] - config.front_edge_max_trim))
         _board_behind(lo, hi, k, float(np.median(q[face_mask, k])), side, config.front_thickness)
+    else:
+        slab = _slab_box(prim, q, k, bool(f % 2), config)
+        if slab is not None:
+            return slab, False
+        # a box seen on two or three faces: each other seen face at the median of its points
+        for a in range(3):
+            if a != k:
+                lo[a], hi[a] = _seen_faces(q, a, normals, prim.T_world_part[:3, :3], lo[a], hi[a], config)
     for a in range(3):
         if hi[a] - lo[a] < config.min_thickness:
             mid = (hi[a] + lo[a]) / 2
@@ -275,11 +296,14 @@ def _board_behind(lo: np.ndarray, hi: np.ndarray, k: int, seen: float, side: boo
     lo[k], hi[k] = (seen - thickness, seen) if side else (seen, seen + thickness)
 
 
-def _vertical_panel(lo: np.ndarray, hi: np.ndarray, k: int, axis_k: np.ndarray, config: FittingConfig) -> bool:
-    """Is the box [lo, hi] (part frame, (3,) each) a vertical panel seen across its thin axis ``k``
-    (world direction ``axis_k`` (3,), horizontal): thinner than ``panel_ratio`` × its other extents?"""
+def _vertical_panel(lo: np.ndarray, hi: np.ndarray, k: int, R: np.ndarray, config: FittingConfig) -> bool:
+    """Is the box [lo, hi] (part frame, (3,) each; axes the columns of ``R`` (3, 3) world) a vertical panel
+    seen across its thin axis ``k`` (horizontal; one of its other axes within ``front_max_tilt`` of the
+    vertical, as a door or drawer front stands), thinner than ``panel_ratio`` × its other extents?"""
     size = hi - lo
-    return bool(abs(axis_k[2]) < 0.5 and size[k] < config.panel_ratio * min(size[a] for a in range(3) if a != k))
+    others = [a for a in range(3) if a != k]
+    upright = max(abs(R[2, a]) for a in others) >= np.cos(config.front_max_tilt)
+    return bool(abs(R[2, k]) < 0.5 and upright and size[k] < config.panel_ratio * min(size[a] for a in others))
 
 
 def _facing(normals: np.ndarray | None, mask: np.ndarray, axis_k: np.ndarray, config: FittingConfig) -> np.ndarray:
@@ -351,6 +375,124 @@ def _rim_ends(x: np.ndarray, normals: np.ndarray | None, axis: np.ndarray,
     return bool(across[order[:m]].mean() > 0.5), bool(across[order[-m:]].mean() > 0.5)
 
 
+def _slab_box(prim: Primitive, q: np.ndarray, k: int, plus: bool, config: FittingConfig) -> Primitive | None:
+    """The box of a slab (a board, a table top) seen on its ``+k`` face (``plus``) or its ``-k`` face and
+    on some of its edges, from its points ``q`` (n, 3) in the frame of ``prim`` (a box about them); None
+    when the points do not show that.
+
+    The seen face is the plane of the interior points (farther than ``slab_edge_band`` in-plane from the
+    box's outline: only the face has points there): the box is turned so that axis ``k`` is that plane's
+    normal (a minimum-volume box of a noisy board is tilted by the noise), the face is at the median of
+    those points and the noise σ is their robust spread. The edges' points lie within the band and spread
+    evenly across the thickness; those deeper than 2.5σ behind the seen face (no face noise reaches
+    there) are spread evenly from that depth to the hidden face, which is therefore at twice their mean
+    depth less 2.5σ. The in-plane extents are the 0.2 / 99.8 percentiles. Requires ``min_face_points``
+    such edge points, interior points deeper than 2.5σ fewer than ``slab_hidden_fraction`` of the
+    interior ones (the hidden face was not seen) and a box thinner than ``panel_ratio`` × its other extents.
+    """
+    inplane = [a for a in range(3) if a != k]
+    if prim.size[k] >= config.panel_ratio * min(prim.size[a] for a in inplane):
+        return None
+
+    def interior_of(qq):
+        lo, hi = np.percentile(qq, 0.2, axis=0), np.percentile(qq, 99.8, axis=0)
+        band = np.zeros(len(qq), bool)
+        for a in inplane:
+            band |= (qq[:, a] - lo[a] < config.slab_edge_band) | (hi[a] - qq[:, a] < config.slab_edge_band)
+        return band, lo, hi
+
+    band, _, _ = interior_of(q)
+    if (~band).sum() < max(config.min_face_points, 3):
+        return None
+    c = q[~band] - q[~band].mean(axis=0)
+    normal = np.linalg.svd(c, full_matrices=False)[2][2]
+    normal = normal if normal[k] > 0 else -normal
+    e = np.zeros(3)
+    e[k] = 1.0
+    axis = np.cross(e, normal)
+    angle = np.arctan2(np.linalg.norm(axis), normal[k])
+    if angle > config.slab_max_tilt:
+        return None
+    R = Rotation.from_rotvec(axis / max(np.linalg.norm(axis), 1e-12) * angle).as_matrix() if angle > 1e-9 else np.eye(3)
+    q = q @ R                              # coordinates in the turned frame (its axis k = the normal)
+    band, lo, hi = interior_of(q)
+    interior = q[~band, k]
+    seen = float(np.median(interior))
+    sigma = _mad_sigma(interior)
+    inward = -1.0 if plus else 1.0
+    depth = (q[:, k] - seen) * inward
+    cut = 2.5 * sigma
+    if np.mean(depth[~band] > cut) >= config.slab_hidden_fraction:
+        return None
+    rim = depth[band & (depth > cut)]
+    if len(rim) < config.min_face_points:
+        return None
+    far = seen + inward * max(2.0 * float(rim.mean()) - cut, config.min_thickness)
+    lo[k], hi[k] = min(seen, far), max(seen, far)
+    T = prim.T_world_part.copy()
+    T[:3, :3] = T[:3, :3] @ R
+    return _box_between(Primitive(PrimitiveKind.BOX, prim.size, T), lo, hi)
+
+
+def _turn(q: np.ndarray, n: np.ndarray, a: int) -> float:
+    """How far the normals ``n`` (m, 3) of points ``q`` (m, 3) (both in a box's frame) on a face across
+    axis ``a`` turn over it: the largest change, fitted linearly, of an in-plane normal component
+    across the points' spread (0 on a plane, about 1 across a cylinder's visible side)."""
+    turn = 0.0
+    for b in range(3):
+        if b != a and len(q) >= 3 and np.ptp(q[:, b]) > 0:
+            slope = np.polyfit(q[:, b], n[:, b], 1)[0]
+            turn = max(turn, abs(slope) * float(np.ptp(q[:, b])))
+    return turn
+
+
+def _curved(q: np.ndarray, mask: np.ndarray, k: int, normals: np.ndarray | None, R: np.ndarray,
+            config: FittingConfig) -> bool:
+    """Is the best-seen face of a box (its points ``mask`` (n,) of ``q`` (n, 3) in the box's frame, across
+    axis ``k``; axes the columns of ``R`` (3, 3) world) a curved surface: do the ``normals`` (n, 3, world)
+    of those of its points facing along ``k`` turn by more than ``seen_face_max_turn`` across it?"""
+    if normals is None or len(normals) != len(q):
+        return False
+    n_part = normals @ R
+    face = mask & (np.abs(n_part[:, k]) > 0.8)
+    return face.sum() >= config.min_face_points and _turn(q[face], n_part[face], k) > config.seen_face_max_turn
+
+
+def _seen_faces(q: np.ndarray, a: int, normals: np.ndarray | None, R: np.ndarray, lo: float, hi: float,
+                config: FittingConfig) -> tuple[float, float]:
+    """(low, high) ends along axis ``a`` of a box whose points ``q`` (n, 3) in its frame (axes the columns
+    of ``R`` (3, 3) world) extend over [``lo``, ``hi``] along it (percentiles, overshooting by the noise).
+
+    An end is a face seen across its plane when most of its outermost points (``edge_tail_fraction``, at
+    least ``min_face_points``) have normals (n, 3, world) along the axis (|cos| > 0.8): it is moved to the
+    median coordinate of the points with such normals within ``seen_face_band`` of it (depth noise is
+    symmetric about the surface), if that median is within half the band of it (a median deeper in is an
+    inner face seen beside the end: a cabinet's bottom panel) and those points are flat (their normals do
+    not turn with their position across the face by more than ``seen_face_max_turn`` over it, as on a
+    cylinder's side). An end made of other faces' edges is kept. Unchanged without normals.
+    """
+    x = q[:, a]
+    m = max(config.min_face_points, int(config.edge_tail_fraction * len(x)))
+    if normals is None or len(normals) != len(x) or len(x) < 4 * m:
+        return lo, hi
+    n_part = normals @ R                                   # normals in the box's frame
+    order = np.argsort(x)
+    along = np.abs(n_part[:, a]) > 0.8
+    out = [lo, hi]
+    for end, tail in ((0, order[:m]), (1, order[-m:])):
+        if along[tail].mean() <= 0.5:
+            continue
+        near = along & (np.abs(x - out[end]) < config.seen_face_band)
+        if near.sum() < config.min_face_points:
+            continue
+        face = float(np.median(x[near]))
+        if abs(face - out[end]) > config.seen_face_band / 2:
+            continue
+        if _turn(q[near], n_part[near], a) <= config.seen_face_max_turn:
+            out[end] = face
+    return (out[0], out[1]) if out[1] - out[0] >= config.min_thickness else (lo, hi)
+
+
 def _icp_refined(prim: Primitive, score: FitScore, points: np.ndarray, normals: np.ndarray,
                  config: FittingConfig, rng: np.random.Generator) -> Primitive:
     from recon.open3d_engine import icp_point_to_plane
@@ -409,3 +551,48 @@ def fit_part(points: np.ndarray, config: FittingConfig, *, seed: int = 0,
         if best is None or rank < best[3] - 1e-12:
             best = (name, prim, s, rank)
     return best[0], best[1], best[2], table
+
+
+@dataclass(frozen=True, eq=False)
+class CoveredFit:
+    """:func:`fit_part_covering`'s answer: the winner's name, primitive, score and {name: total} table as
+    :func:`fit_part` gives them, the kinds refused because their fit did not cover the points (in the
+    order refused) and the coverage problems of the fit kept (empty when it covers its points)."""
+
+    name: str
+    primitive: Primitive
+    score: FitScore
+    table: dict
+    refused: tuple[str, ...]
+    problems: tuple[str, ...]
+
+
+def fit_part_covering(points: np.ndarray, config: FittingConfig, coverage_config: CoverageConfig, *,
+                      seed: int = 0, normals: np.ndarray | None = None,
+                      R_world_ref: np.ndarray | None = None) -> CoveredFit:
+    """:func:`fit_part`, then the fit checked against its points (:mod:`recon.coverage`: mean distance,
+    share covered, volume against the points' oriented box); a fit outside the bounds is refitted with
+    the candidates of the other kinds (box, cylinder, sphere), kind by kind, until one covers the points.
+    When none does, the fit with the fewest problems (the first fit on a tie) is kept with its problems.
+    ``points`` (n, 3) world; the other arguments as for :func:`fit_part`."""
+    def attempt(cfg):
+        name, prim, score, table = fit_part(points, cfg, seed=seed, normals=normals, R_world_ref=R_world_ref)
+        return name, prim, score, table, tuple(coverage_problems(coverage(prim, prim, points, coverage_config),
+                                                                 coverage_config))
+
+    best = current = attempt(config)
+    refused: list[str] = []
+    while current[4]:
+        refused.append(current[1].kind.value)
+        left = tuple(c for c in config.candidates if _candidate_kind(c) not in refused)
+        if not left:
+            break
+        current = attempt(dataclasses.replace(config, candidates=left))
+        if len(current[4]) < len(best[4]):
+            best = current
+    return CoveredFit(*best[:4], tuple(refused), best[4])
+
+
+def _candidate_kind(name: str) -> str:
+    """The primitive kind ("box", "cylinder", "sphere") of a candidate name (``cylinder_x``, ``box@yaw``)."""
+    return name.split("@")[0].split("_")[0]

@@ -4,7 +4,8 @@ Stages, in order (each a function below; per-object state travels in an :class:`
 
     level_floor        optional: the scan rotated so that its floor is z = 0, z up (leveling.py)
     remove_outliers    statistical outliers dropped part by part (outliers.py)
-    fit_primitives     Eq. 3: the best primitive per part, the base part first (fitting.py)
+    fit_primitives     Eq. 3: the best primitive per part, the base part first; a fit that does not cover
+                       its points is refitted with the other kinds (fitting.py, coverage.py)
     complete_parts     hidden legs placed; legs, reaching and mounted parts extended (completion.py)
     contact_graph      surface planes Π, then the Eq. 1 contacts between parts (planes.py, contacts.py)
     build_part_tree    Eq. 4: the maximum spanning arborescence of the contacts (part_tree.py)
@@ -35,7 +36,7 @@ from recon.completion import (complete_missing_legs, complete_mounted_parts, com
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.coverage import coverage, coverage_problems
-from recon.fitting import FitScore, fit_part
+from recon.fitting import FitScore, fit_part_covering
 from recon.handle_shapes import HandleShapes, mounted_handle_shapes, posed_handle_shapes
 from recon.joint_uncertainty import with_joint_uncertainty
 from recon.joints import estimate_joints
@@ -221,7 +222,9 @@ def _part_seed(seed: int, part_id: int) -> int:
 
 def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     """Eq. 3 for every part of ``obj``: the base part first, whose axes then orient the small parts
-    (fewer than ``small_part_points`` points)."""
+    (fewer than ``small_part_points`` points). A fit outside the coverage bounds is refitted with the
+    other kinds of candidates (:func:`recon.fitting.fit_part_covering`); one still outside them is named
+    in a warning by :func:`check_coverage`."""
     config = run.config.fitting
     labels = {p.part_id: p.label for p in obj.parts}
     base = choose_root(labels, {p.part_id: float(len(p.points)) for p in obj.parts})
@@ -233,8 +236,13 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
             run.warn(f"object {obj.id} ({obj.category}) part {p.part_id} ({p.label}): its points are {shape}; "
                      f"the primitive is given the minimum thickness {config.min_thickness} m")
         small = len(p.points) < config.small_part_points
-        name, prim, score, table = fit_part(p.points, config, seed=_part_seed(run.seed, p.part_id),
-                                            normals=p.normals, R_world_ref=R_ref if small else None)
+        fit = fit_part_covering(p.points, config, run.config.coverage, seed=_part_seed(run.seed, p.part_id),
+                                normals=p.normals, R_world_ref=R_ref if small else None)
+        name, prim, score, table = fit.name, fit.primitive, fit.score, fit.table
+        if fit.refused:
+            log.info("%s part %d (%s): the fitted %s did not cover its points; refitted as a %s%s", obj.id,
+                     p.part_id, p.label, " then ".join(fit.refused), prim.kind.value,
+                     f" (still: {'; '.join(fit.problems)})" if fit.problems else "")
         if p.part_id == base:
             R_ref = prim.T_world_part[:3, :3].copy()
         state.fits[p.part_id] = FittedPart(prim, score, table, len(p.points))

@@ -25,6 +25,9 @@ __all__ = ["KNOWN_CATEGORIES", "KNOWN_LABELS", "PartPoints", "ObjectPoints", "Sc
 
 log = logging.getLogger(__name__)
 
+#: part labels kept from ``handle_min_part_points`` points (small parts placed from their mount)
+_SMALL_LABELS = frozenset({"handle", "knob"})
+
 #: a part (or a whole scan) whose points all lie within this distance (m, per axis) is degenerate:
 #: a part is skipped with a warning, a whole scan is refused
 MIN_PART_EXTENT = 1e-3
@@ -293,9 +296,11 @@ def scan_from_arrays(props: dict[str, np.ndarray], labels: list[dict], *,
                 warn(f"object {oid} part {pid}: {int(wrong_obj.sum())} points carry object id "
                      f"{int(obj[wrong_obj][0])}; they are kept with part {pid}")
             count = int(mask.sum())
-            if count < config.min_part_points:
+            need = (min(config.handle_min_part_points, config.min_part_points) if label in _SMALL_LABELS
+                    else config.min_part_points)
+            if count < need:
                 warn(f"object {oid} ({cat}) part {pid} ({label}): {count} points, fewer than "
-                     f"{config.min_part_points}; the part is skipped")
+                     f"{need}; the part is skipped")
                 skipped.append(PartPoints(oid, pid, label, pts[mask], None if normals is None else normals[mask]))
                 continue
             span = float(np.max(np.ptp(pts[mask], axis=0)))

@@ -65,3 +65,21 @@ def test_the_pipeline_names_every_part_outside_the_bounds(kitchen_scan, kitchen_
     flagged = [w for w in rec.warnings if "does not cover its points" in w]
     assert len(flagged) == sum(len(o.parts) for o in rec.objects)
     assert any(w.startswith("cabinet1_drawer102: the fitted box does not cover its points") for w in flagged)
+
+
+def test_a_fit_that_does_not_cover_its_points_is_refitted_with_the_other_kinds():
+    """A board's points: a prior that makes the sphere win Eq. 3 gives a sphere that does not cover them;
+    the refit with the other kinds gives the box. With the sphere alone, it is kept with its problems."""
+    import dataclasses
+
+    from recon.fitting import fit_part, fit_part_covering
+
+    board = _box([1.0, 0.6, 0.03])
+    pts = board.sample_surface(2000, np.random.default_rng(0))[0]
+    fitting = dataclasses.replace(ReconConfig().fitting, candidates=("sphere", "box"), box_preference=-1 + 1e-9,
+                                  icp_candidate_ratio=1e9)
+    assert fit_part(pts, fitting)[1].kind is PrimitiveKind.SPHERE
+    fit = fit_part_covering(pts, fitting, CFG)
+    assert fit.primitive.kind is PrimitiveKind.BOX and fit.refused == ("sphere",) and fit.problems == ()
+    alone = fit_part_covering(pts, dataclasses.replace(fitting, candidates=("sphere",)), CFG)
+    assert alone.primitive.kind is PrimitiveKind.SPHERE and alone.problems
