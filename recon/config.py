@@ -36,6 +36,15 @@ class ScanConfig:
     handle_min_part_points: int = 8
     """... but a handle or knob is kept from this many points (at ScanNet density a handle shows 9-14):
     its bar is placed on its mount's face where its points are (handle_shapes.py)."""
+    front_split_bin: float = 0.01
+    """A drawer/door part's points are binned this high (m) along the vertical to find the horizontal
+    gaps (dividers) between several fronts under one label (front_split.py)."""
+    front_split_min_gap: float = 0.012
+    """... a gap is at least this tall (m) ..."""
+    front_split_density: float = 0.15
+    """... its bins hold at most this fraction of the median count of the part's occupied bins ..."""
+    front_split_min_height: float = 0.08
+    """... and leaves at least this much (m) of front above and below it."""
     max_scene_extent: float = 60.0
     """A scan whose bounding box is larger than this (m) is refused: it is almost surely millimetres."""
     outlier_neighbors: int = 16
@@ -281,6 +290,9 @@ class JointConfig:
     drawer_travel_fraction: float = 0.8
     """Drawer upper limit = this × the drawer box's depth, estimated as the body's depth along the
     drawer axis minus ``drawer_back_clearance`` (a closed drawer's box is hidden from the camera)."""
+    rail_drawer_depth: float = 0.45
+    """Depth (m) of a drawer in a parent thinner than the object behind it (a table's apron): the
+    object's reach behind the parent's face, at most this (a desk drawer's depth; the box is unseen)."""
     drawer_back_clearance: float = 0.025
     """Back panel plus the gap behind a drawer box (m); also where a drawer's template box ends."""
     door_max_angle: float = 1.75

@@ -24,7 +24,7 @@ import numpy as np
 from recon.config import ContactConfig, FittingConfig, JointConfig
 from recon.model import JointEstimate, JointType
 from recon.part_tree import PartTree
-from recon.primitive import Primitive
+from recon.primitive import Primitive, volume_weighted_centre
 from recon.templates import template_for
 from scenes.description import T_about
 
@@ -36,11 +36,14 @@ _UP = np.array([0.0, 0.0, 1.0])
 
 
 def opening_face(parent: Primitive, child: Primitive, handles: list[Primitive],
-                 contacts: ContactConfig, fitting: FittingConfig) -> tuple[np.ndarray, float]:
+                 contacts: ContactConfig, fitting: FittingConfig,
+                 interior: np.ndarray | None = None) -> tuple[np.ndarray, float]:
     """The parent's face a drawer/door sits in: (outward unit normal (3,), d) of that plane.
 
     Among the parent's faces with a horizontal normal: those its handles stand outside of (when it has
-    handles); then, for a panel-like child (a closed drawer or a door is seen as its front panel), the
+    handles); then those facing away from ``interior`` (3,) world, the centre of the object's other
+    parts, when given (a drawer in a thin rail, a table's apron, opens away from the table, not toward
+    it); then, for a panel-like child (a closed drawer or a door is seen as its front panel), the
     face most parallel to the panel; then the face the child reaches most closely.
     """
     planes = parent.planes(contacts.cylinder_side_faces)
@@ -54,9 +57,10 @@ def opening_face(parent: Primitive, child: Primitive, handles: list[Primitive],
         gap = float(np.max(corners @ pl.normal + pl.d))            # child's outermost reach past the plane
         outside = all(float(h.center @ pl.normal + pl.d) > -contacts.theta_d for h in handles)
         skew = 0.0 if thin is None else round(1.0 - abs(float(pl.normal @ thin)), 2)
-        cand.append((0 if outside else 1, skew, abs(gap), pl))
-    cand.sort(key=lambda t: t[:3])
-    best = cand[0][3]
+        inward = interior is not None and float(interior @ pl.normal + pl.d) > 0.0
+        cand.append((0 if outside else 1, int(inward), skew, abs(gap), pl))
+    cand.sort(key=lambda t: t[:4])
+    best = cand[0][4]
     return best.normal.copy(), float(best.d)
 
 
@@ -145,26 +149,37 @@ def _translation(axis: np.ndarray, s: float) -> np.ndarray:
     return M
 
 
-def _drawer_travel(parent: Primitive, axis: np.ndarray, config: JointConfig) -> float:
+def _drawer_travel(parent: Primitive, axis: np.ndarray, config: JointConfig, body: tuple = ()) -> float:
     """A drawer's travel (m) before collisions: ``drawer_travel_fraction`` of the parent's depth along
-    ``axis`` (3,) less ``drawer_back_clearance``."""
+    ``axis`` (3,) less ``drawer_back_clearance``. A parent shallower than the object's other parts
+    ``body`` (primitives) reach behind its front face (a rail, a table's apron) holds a drawer whose box
+    lies behind it: the depth is then that reach, at most ``rail_drawer_depth``."""
     lo, hi = _extent(parent, axis)
-    return config.drawer_travel_fraction * max(hi - lo - config.drawer_back_clearance, 0.0)
+    depth = hi - lo
+    if body:
+        behind = hi - min(_extent(p, axis)[0] for p in body)
+        if behind > depth:
+            depth = max(depth, min(behind, config.rail_drawer_depth))
+    return config.drawer_travel_fraction * max(depth - config.drawer_back_clearance, 0.0)
 
 
 def movable_joint(jtype: JointType, parent: Primitive, child: Primitive, handles: list[Primitive],
                   moving: list[Primitive], obstacles: np.ndarray, config: JointConfig,
-                  contacts: ContactConfig, fitting: FittingConfig) -> tuple[np.ndarray, np.ndarray, float]:
+                  contacts: ContactConfig, fitting: FittingConfig,
+                  body: tuple[Primitive, ...] = ()) -> tuple[np.ndarray, np.ndarray, float]:
     """(axis (3,), origin (3,), upper) of a drawer's (PRISMATIC) or door's (REVOLUTE) joint, world frame.
 
     parent, child : the fitted primitives; handles : the child's handles; moving : every primitive of
     the child's subtree (swept for the limit); obstacles : (n, 3) points it must not sweep into, or
-    None to skip the sweep (upper is then NaN).
+    None to skip the sweep (upper is then NaN); body : the object's other parts (not moving), whose
+    volume-weighted centre the opening faces away from and whose reach behind a thin parent gives a
+    drawer its depth (optional).
     upper : metres or radians (0 when the first step already collides).
     """
-    normal, _ = opening_face(parent, child, handles, contacts, fitting)
+    interior = volume_weighted_centre(body) if body else None
+    normal, _ = opening_face(parent, child, handles, contacts, fitting, interior)
     if jtype is JointType.PRISMATIC:
-        travel = _drawer_travel(parent, normal, config)
+        travel = _drawer_travel(parent, normal, config, body)
         if obstacles is None:
             return normal, child.center, float("nan")
         step = max(min(config.swing_step, travel / 4), 1e-3)
@@ -211,11 +226,12 @@ def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str]
                                         contact_score=score))
             continue
         sub = tree.subtree(c)
+        body = tuple(prims[k] for k in prims if k not in sub)
         axis, origin, upper = movable_joint(jtype, prims[p], prims[c], hprims, [prims[k] for k in sub],
-                                            obstacles_for(sub), config, contacts, fitting)
-        if jtype is JointType.PRISMATIC and upper < _drawer_travel(prims[p], axis, config):
-            warn(f"{names[c]}: drawer travel limited to {upper:.3f} m (of "
-                 f"{_drawer_travel(prims[p], axis, config):.3f} m) by scan points in its way")
+                                            obstacles_for(sub), config, contacts, fitting, body)
+        travel = _drawer_travel(prims[p], axis, config, body)
+        if jtype is JointType.PRISMATIC and upper < travel:
+            warn(f"{names[c]}: drawer travel limited to {upper:.3f} m (of {travel:.3f} m) by scan points in its way")
         elif jtype is JointType.REVOLUTE and upper < config.door_max_angle - 1e-9:
             log.info("%s: door swing stops at %.0f deg (collision)", names[c], np.degrees(upper))
         if upper <= 0.0:

@@ -4,6 +4,7 @@ Stages, in order (each a function below; per-object state travels in an :class:`
 
     level_floor        optional: the scan rotated so that its floor is z = 0, z up (leveling.py)
     remove_outliers    statistical outliers dropped part by part (outliers.py)
+    split_labelled_fronts  a drawer/door part showing horizontal gaps split, one part per front (front_split.py)
     fit_primitives     Eq. 3: the best primitive per part, the base part first; a fit that does not cover
                        its points is refitted with the other kinds (fitting.py, coverage.py)
     complete_parts     hidden legs placed; legs, reaching and mounted parts extended (completion.py)
@@ -37,6 +38,7 @@ from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.coverage import coverage, coverage_problems
 from recon.fitting import FitScore, fit_part_covering
+from recon.front_split import split_fronts
 from recon.handle_shapes import HandleShapes, mounted_handle_shapes, posed_handle_shapes
 from recon.joint_uncertainty import with_joint_uncertainty
 from recon.joints import estimate_joints
@@ -149,6 +151,7 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
     t0 = time.perf_counter()
     scan = remove_outliers(scan, run)
     run.timings["outliers"] = time.perf_counter() - t0
+    scan = split_labelled_fronts(scan, run)
 
     n_obj = len(scan.objects)
     states = []
@@ -211,6 +214,15 @@ def remove_outliers(scan: Scan, run: _Run) -> Scan:
                                           std_ratio=run.config.scan.outlier_std_ratio)
     if removed:
         log.info("removed %d outlier points (flying pixels)", removed)
+    return scan
+
+
+def split_labelled_fronts(scan: Scan, run: _Run) -> Scan:
+    """Each drawer/door part whose points show horizontal gaps split into one part per front, with a
+    warning (front_split.py)."""
+    scan, warnings = split_fronts(scan, run.config.scan)
+    for w in warnings:
+        run.warn(w)
     return scan
 
 

@@ -1,0 +1,87 @@
+"""Fronts labelled as one part but showing several: a drawer/door part split at horizontal gaps.
+
+A segmentation can give one part id to a chest's whole column of drawer fronts. The rails between the
+fronts belong to the body, so the part's points show horizontal bands without points (dividers). Along
+the vertical (world z, metres) the part's points are binned ``front_split_bin`` wide; a run of bins
+holding at most ``front_split_density`` × the median count of the occupied bins, at least
+``front_split_min_gap`` tall, with at least ``front_split_min_height`` of front above and below it, is a
+gap. The part is cut at the middle of each gap; the lowest piece keeps the part id, the others get new
+ids above every id in the scan, with the same label. Each split is reported by a warning naming the
+object, the part and the new ids.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from recon.config import ScanConfig
+from recon.scan import PartPoints, Scan
+
+__all__ = ["FRONT_LABELS", "horizontal_gaps", "split_fronts"]
+
+FRONT_LABELS = frozenset({"drawer", "door"})
+"""Labels of the parts that are checked for several fronts under one label."""
+
+
+def horizontal_gaps(z: np.ndarray, config: ScanConfig) -> list[float]:
+    """Heights (m) of the middles of the horizontal gaps in the heights ``z`` (n,) of one part's points,
+    lowest first (empty when the points show one front)."""
+    if len(z) < 2 * config.min_part_points:
+        return []
+    b = config.front_split_bin
+    lo, hi = float(z.min()), float(z.max())
+    nb = int(np.ceil((hi - lo) / b))
+    if nb < 3:
+        return []
+    counts, edges = np.histogram(z, bins=nb, range=(lo, lo + nb * b))
+    level = config.front_split_density * float(np.median(counts[counts > 0]))
+    empty = counts <= level
+    gaps, k = [], 0
+    while k < nb:
+        if not empty[k]:
+            k += 1
+            continue
+        j = k
+        while j + 1 < nb and empty[j + 1]:
+            j += 1
+        bottom, top = float(edges[k]), float(edges[j + 1])
+        if (top - bottom >= config.front_split_min_gap and bottom - lo >= config.front_split_min_height
+                and hi - top >= config.front_split_min_height):
+            gaps.append((bottom + top) / 2)
+        k = j + 1
+    return gaps
+
+
+def split_fronts(scan: Scan, config: ScanConfig) -> tuple[Scan, list[str]]:
+    """(the scan with every drawer/door part that shows horizontal gaps split into one part per front,
+    the warnings naming each split). Parts of other labels and fronts without gaps are unchanged."""
+    next_id = int(max(scan.part_id.max(initial=-1), max((p.part_id for o in scan.objects for p in o.parts),
+                                                        default=-1))) + 1
+    part_id = scan.part_id.copy()
+    objects, warnings = [], []
+    for obj in scan.objects:
+        parts = []
+        for p in obj.parts:
+            gaps = horizontal_gaps(p.points[:, 2], config) if p.label in FRONT_LABELS else []
+            if not gaps:
+                parts.append(p)
+                continue
+            piece = np.searchsorted(np.asarray(gaps), p.points[:, 2])
+            ids = [p.part_id] + list(range(next_id, next_id + len(gaps)))
+            next_id += len(gaps)
+            for k, pid in enumerate(ids):
+                m = piece == k
+                parts.append(PartPoints(p.object_id, pid, p.label, p.points[m],
+                                        None if p.normals is None else p.normals[m]))
+            in_scan = np.flatnonzero(scan.part_id == p.part_id)
+            part_id[in_scan] = np.asarray(ids)[np.searchsorted(np.asarray(gaps), scan.points[in_scan, 2])]
+            warnings.append(f"object {obj.id} ({obj.category}) part {p.part_id} ({p.label}): its points show "
+                            f"{len(ids)} fronts separated by horizontal gaps at z = "
+                            f"{', '.join(f'{g:.3f}' for g in gaps)} m; split into parts "
+                            f"{', '.join(map(str, ids))}, each a {p.label} (check the labels)")
+        objects.append(replace(obj, parts=tuple(parts)))
+    if not warnings:
+        return scan, []
+    return replace(scan, part_id=part_id, objects=tuple(objects)), warnings
