@@ -112,6 +112,11 @@ class FittingConfig:
     front_thickness: float = 0.018
     """Thickness (m) of a noisy vertical panel (door / drawer front): its seen face is the median of that
     face's points and the panel extends this far behind it (18 mm board, as ``carcass_wall``)."""
+    normals_frame_cone: float = 0.26
+    """A box candidate is also built along the directions its points' normals cluster in (within this
+    angle, rad, 15 deg) ..."""
+    normals_frame_min_angle: float = 0.17
+    """... when that frame differs from the minimum-volume box's by more than this (rad, 10 deg)."""
     seen_face_band: float = 0.02
     """A box seen on several faces: the points (normals along an axis) within this (m) of an end of that
     axis are the face there; it is placed at their median (fitting._seen_faces)."""

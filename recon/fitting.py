@@ -26,8 +26,8 @@ from recon.config import CoverageConfig, FittingConfig
 from recon.coverage import coverage, coverage_problems
 from recon.primitive import Primitive, PrimitiveKind
 
-__all__ = ["FitScore", "candidate_primitives", "score_primitive", "denoised_box", "dominant_yaw", "fit_part",
-           "CoveredFit", "fit_part_covering"]
+__all__ = ["FitScore", "candidate_primitives", "normals_frame", "score_primitive", "denoised_box", "dominant_yaw", "fit_part",
+           "CoveredFit", "fit_part_covering", "body_behind_face"]
 
 # rotations making a box axis the local z of a cylinder: columns = (new x, new y, new z) in box axes
 _AXIS_PERM = {
@@ -77,6 +77,49 @@ def dominant_yaw(normals: np.ndarray) -> float | None:
     return float(mean / 4.0)
 
 
+def normals_frame(normals: np.ndarray, config: FittingConfig) -> np.ndarray | None:
+    """(3, 3) a right-handed frame whose first axis is the direction (sign-free) that most of the unit
+    ``normals`` (n, 3) lie within ``normals_frame_cone`` of, the second the same among the normals
+    across it, the third their cross product; None with fewer than ``min_face_points`` normals on the
+    first two directions. Candidate directions are the normals themselves (a seeded subsample)."""
+    n = np.asarray(normals, dtype=np.float64)
+    if len(n) < 2 * config.min_face_points:
+        return None
+    cands = n[np.random.default_rng(0).choice(len(n), min(len(n), 200), replace=False)]
+    cos = np.cos(config.normals_frame_cone)
+
+    def strongest(c, pool):
+        votes = (np.abs(pool @ c.T) > cos).sum(axis=0)
+        i = int(np.argmax(votes))
+        if votes[i] < config.min_face_points:
+            return None
+        member = pool[np.abs(pool @ c[i]) > cos]
+        member = member * np.sign(member @ c[i])[:, None]
+        d = member.mean(axis=0)
+        return d / np.linalg.norm(d)
+
+    d1 = strongest(cands, n)
+    if d1 is None:
+        return None
+    across = np.abs(n @ d1) < np.sin(config.normals_frame_cone)
+    c2 = cands[np.abs(cands @ d1) < np.sin(config.normals_frame_cone)]
+    if len(c2) == 0 or across.sum() < config.min_face_points:
+        return None
+    d2 = strongest(c2, n[across])
+    if d2 is None:
+        return None
+    d2 = d2 - (d2 @ d1) * d1
+    d2 /= np.linalg.norm(d2)
+    return np.stack([d1, d2, np.cross(d1, d2)], axis=1)
+
+
+def _frame_angle(Ra: np.ndarray, Rb: np.ndarray) -> float:
+    """The smallest rotation angle (rad) between two box frames (3, 3), over the box's 24 symmetries."""
+    M = np.abs(Ra.T @ Rb)
+    # each axis of Ra matched to its most parallel axis of Rb: the worst of those angles
+    return float(np.arccos(np.clip(M.max(axis=1).min(), -1.0, 1.0)))
+
+
 def _yaw_frame(yaw: float) -> np.ndarray:
     c, s = np.cos(yaw), np.sin(yaw)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
@@ -99,6 +142,12 @@ def candidate_primitives(points: np.ndarray, config: FittingConfig,
         Tr, er = _box_in_frame(points, R_world_ref, config.min_thickness)
         return {f"{k}@ref": v for k, v in _templates(points, Tr, er, config).items()}
     out = _templates(points, T, ext, config)
+    R_n = None if normals is None or "box" not in config.candidates else normals_frame(normals, config)
+    if R_n is not None and _frame_angle(R_n, T[:3, :3]) > config.normals_frame_min_angle:
+        # a box seen on two faces: its minimum-volume box may lie along the diagonal of its L-shaped
+        # cross-section; the directions of its faces' normals do not
+        Tn, en = _box_in_frame(points, R_n, config.min_thickness)
+        out["box@normals"] = Primitive(PrimitiveKind.BOX, en, Tn)
     yaw = None if normals is None or "box" not in config.candidates else dominant_yaw(normals)
     if yaw is not None:
         # noise moves a minimum-area rectangle's corners; the faces' normals hold the yaw better
@@ -596,3 +645,28 @@ def fit_part_covering(points: np.ndarray, config: FittingConfig, coverage_config
 def _candidate_kind(name: str) -> str:
     """The primitive kind ("box", "cylinder", "sphere") of a candidate name (``cylinder_x``, ``box@yaw``)."""
     return name.split("@")[0].split("_")[0]
+
+
+def body_behind_face(prim: Primitive, normals: np.ndarray | None, config: FittingConfig) -> Primitive | None:
+    """A body (a cabinet's carcass) whose fitted box is a panel — its points show one face only — as a
+    box as deep as its narrower side behind that face (a documented prior: the depth no scan shows); the
+    seen side is the one its points' oriented ``normals`` (n, 3, world) point to. None when the box is
+    no panel (thinnest extent at least ``panel_ratio`` × the next) or the normals do not tell the side."""
+    if prim.kind is not PrimitiveKind.BOX or normals is None or not len(normals):
+        return None
+    order = np.argsort(prim.size)
+    k = int(order[0])
+    if prim.size[k] >= config.panel_ratio * prim.size[order[1]]:
+        return None
+    axis = prim.T_world_part[:3, k]
+    m = float(np.mean(normals @ axis))
+    if abs(m) <= 0.5:
+        return None
+    h = prim.size / 2
+    lo, hi = -h.copy(), h.copy()
+    depth = float(prim.size[order[1]])
+    if m > 0:                              # seen from +k: the body lies behind, toward -k
+        lo[k] = hi[k] - depth
+    else:
+        hi[k] = lo[k] + depth
+    return _box_between(prim, lo, hi)

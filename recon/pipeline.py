@@ -37,7 +37,7 @@ from recon.completion import (complete_missing_legs, complete_mounted_parts, com
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.coverage import coverage, coverage_problems
-from recon.fitting import FitScore, fit_part_covering
+from recon.fitting import FitScore, body_behind_face, fit_part_covering
 from recon.front_split import split_fronts
 from recon.handle_shapes import HandleShapes, mounted_handle_shapes, posed_handle_shapes
 from recon.joint_uncertainty import with_joint_uncertainty
@@ -236,12 +236,14 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     """Eq. 3 for every part of ``obj``: the base part first, whose axes then orient the small parts
     (fewer than ``small_part_points`` points). A fit outside the coverage bounds is refitted with the
     other kinds of candidates (:func:`recon.fitting.fit_part_covering`); one still outside them is named
-    in a warning by :func:`check_coverage`."""
+    in a warning by :func:`check_coverage`. A body whose points show one face only is given a depth
+    behind it (:func:`recon.fitting.body_behind_face`), with a warning."""
     config = run.config.fitting
     labels = {p.part_id: p.label for p in obj.parts}
     base = choose_root(labels, {p.part_id: float(len(p.points)) for p in obj.parts})
     state = ObjectState(obj, labels, {p.part_id: p.points for p in obj.parts}, base)
     R_ref = None
+    completed = {}            # {part_id: primitive} completed beyond what its points show (the fit is kept)
     for p in sorted(obj.parts, key=lambda p: p.part_id != base):
         shape = _degeneracy(p.points, config.min_thickness)
         if shape:
@@ -255,11 +257,17 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
             log.info("%s part %d (%s): the fitted %s did not cover its points; refitted as a %s%s", obj.id,
                      p.part_id, p.label, " then ".join(fit.refused), prim.kind.value,
                      f" (still: {'; '.join(fit.problems)})" if fit.problems else "")
+        if p.part_id == base and p.label == "body":
+            deep = body_behind_face(prim, p.normals, config)
+            if deep is not None:
+                run.warn(f"{link_name(obj.category, obj.id, p.label, p.part_id)}: its points show one face only; "
+                         f"the body is given the depth of its narrower side, {deep.size.min():.2f} m, behind it")
+                completed[p.part_id] = deep
         if p.part_id == base:
             R_ref = prim.T_world_part[:3, :3].copy()
         state.fits[p.part_id] = FittedPart(prim, score, table, len(p.points))
         log.debug("object %d part %d (%s): %s, score %.4f", obj.id, p.part_id, p.label, name, score.total)
-    state.prims = {i: f.primitive for i, f in state.fits.items()}
+    state.prims = {i: completed.get(i, f.primitive) for i, f in state.fits.items()}
     return state
 
 

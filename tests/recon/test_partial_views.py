@@ -30,6 +30,22 @@ def test_a_cube_seen_on_three_faces_is_a_box_of_its_size(seed):
 
 
 @pytest.mark.parametrize("seed", SEEDS)
+def test_a_cube_seen_on_two_faces_is_a_box_along_its_faces(seed):
+    """The minimum-volume box of an L-shaped cross-section may lie along its diagonal: the candidate
+    along the faces' normals gives the box."""
+    true, fit = _through_pipeline("cube 0.5 m, 2 faces", seed)
+    assert fit.kind.value == "box"
+    assert primitive_iou(true, fit) >= 0.9
+
+
+def test_a_body_seen_on_one_face_gets_the_depth_of_its_narrower_side():
+    true, scan = partial_view_scan(_case("cube 0.5 m, 1 face"), 0)
+    rec = reconstruct_scan(scan, seed=0)
+    assert primitive_iou(true, rec.objects[0].parts[0].primitive) >= 0.9
+    assert any("its points show one face only" in w for w in rec.warnings)
+
+
+@pytest.mark.parametrize("seed", SEEDS)
 def test_a_board_seen_on_its_face_and_two_edges_keeps_its_thickness(seed):
     true, fit = _through_pipeline("board", seed)
     assert fit.kind.value == "box"
