@@ -11,7 +11,8 @@ state carried from task to task (drawer A stays open while door B is opened).
       - open-drawer:cabinet3_drawer12_joint
       - {kind: open-door, joint: cabinet5_door14_joint, amount: 1.2}   # also grasp_point, grasp_link
       - plan: drawer.plan.json     # a given plan (partscene.plan/1, one expectation), replayed as it is;
-                                   # its first waypoint must be where the previous task left the robot
+                                   # its first waypoint must be where the previous task left the robot;
+                                   # executed with the scenario's robot (the plan's 'robot' is not used)
 
 Any other key is an error naming it and the closest valid key (:mod:`simcheck.file_schemas`).
 """
