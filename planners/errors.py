@@ -12,7 +12,7 @@ from __future__ import annotations
 from scenes.description import InputError, PartsceneError
 
 __all__ = ["PlannerError", "PlannerInputError", "SceneURDFError", "TaskSpecError", "TaskJointError",
-           "HandleNotFoundError", "RobotDescriptionError"]
+           "HandleNotFoundError", "HandleStaysPutError", "RobotDescriptionError"]
 
 
 class PlannerError(PartsceneError):
@@ -39,6 +39,12 @@ class TaskJointError(TaskSpecError):
 
 class HandleNotFoundError(PlannerInputError):
     """No handle could be found on the part moved by the task's joint (names file and joint)."""
+
+
+class HandleStaysPutError(HandleNotFoundError):
+    """The handle found does not move when the joint opens (it lies on the estimated hinge axis): the
+    estimate is usable, but nothing can be pulled; :func:`planners.plan_open_task` reports it as a planning
+    outcome (``OPENING_FAILED``), not as unusable input."""
 
 
 class RobotDescriptionError(PlannerInputError):

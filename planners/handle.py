@@ -36,7 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from planners.config import PlannerConfig
-from planners.errors import HandleNotFoundError
+from planners.errors import HandleNotFoundError, HandleStaysPutError
 from scenes.description import R_about, SceneModel, Shape, ShapeKind
 from planners.task import OpenTask
 
@@ -316,7 +316,7 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
     p_world = (T_world_moving @ np.append(p_link, 1.0))[:3]
     v = direction * outward_direction(scene, task.joint, p_world, values)
     if np.linalg.norm(v) < cfg.min_handle_lever * (1.0 if j.type == "prismatic" else 1.0):
-        raise HandleNotFoundError(f"{where}: the handle at {np.round(p_world, 3).tolist()} does not move when "
+        raise HandleStaysPutError(f"{where}: the handle at {np.round(p_world, 3).tolist()} does not move when "
                                   f"the joint opens (it lies on the hinge axis)")
     n = v / np.linalg.norm(v)
     axis_world = None if axis is None else T_world_moving[:3, :3] @ axis

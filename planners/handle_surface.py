@@ -50,9 +50,9 @@ def _mesh(shape, T):
 
 def protruding_surface(geoms: list, outward: np.ndarray, prismatic: bool, seed: int = 0) -> SurfaceHandle | None:
     """The handle standing out of the front of a part made of ``geoms`` ((link, Shape, T_frame_geom (4, 4),
-    index) tuples, one frame for all), or None. ``outward`` (3,): the direction the part's front moves when
-    it opens, in that frame (exact for a drawer, ``prismatic``; for a door only roughly normal to its face:
-    the face normal is then the samples' direction of least spread, turned to agree with it)."""
+    index) tuples, one frame for all), or None. ``outward`` (3,): roughly the direction the part's front
+    moves when it opens, in that frame; the face normal is the mean normal of the surface facing within
+    45 deg of it (the front face and the handle's). ``prismatic`` is kept for callers' clarity."""
     import trimesh
     meshes = []
     for g in geoms:
@@ -64,21 +64,20 @@ def protruding_surface(geoms: list, outward: np.ndarray, prismatic: bool, seed: 
     if areas.sum() <= 0:
         return None
     counts = np.maximum(1, np.round(_SAMPLES * areas / areas.sum()).astype(int)) * (areas > 0)
-    pts, owner = [], []
+    pts, owner, normals = [], [], []
     for k, (m, n) in enumerate(zip(meshes, counts)):
         if n:
-            p, _ = trimesh.sample.sample_surface(m, int(n), seed=seed + k)
+            p, faces = trimesh.sample.sample_surface(m, int(n), seed=seed + k)
             pts.append(p)
+            normals.append(m.face_normals[faces])
             owner.append(np.full(len(p), k))
-    pts, owner = np.vstack(pts), np.concatenate(owner)
+    pts, owner, normals = np.vstack(pts), np.concatenate(owner), np.vstack(normals)
     if not np.linalg.norm(outward) > 1e-9:
         return None
     n = np.asarray(outward, float) / np.linalg.norm(outward)
-    if not prismatic:
-        w, v = np.linalg.eigh(np.cov((pts - pts.mean(0)).T))
-        normal = v[:, 0] * np.sign(v[:, 0] @ n)
-        if normal @ n > 0.7:
-            n = normal
+    facing = normals[normals @ n > 0.7]        # the surface facing outward: the front face (and the handle's)
+    if len(facing):
+        n = facing.mean(0) / np.linalg.norm(facing.mean(0))
     h = pts @ n
     top = h.max()
     bins = np.floor((top - h) / _BIN).astype(int)

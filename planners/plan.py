@@ -17,7 +17,7 @@ import time
 import numpy as np
 
 from planners.config import PlannerConfig, default_amount
-from planners.errors import PlannerInputError, TaskJointError
+from planners.errors import HandleStaysPutError, PlannerInputError, TaskJointError
 from planners.handle import find_handle
 from planners.ik import solve_ik
 from planners.motion import TrackResult, densify, first_invalid, track_poses
@@ -104,7 +104,12 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     s0 = float(state.get(task.joint, 0.0))
     amount = _validate(scene, task, s0, cfg)
     kin = robot_kinematics(robot)
-    handle = find_handle(scene, task, state, cfg, 1.0 if amount > 0 else -1.0)
+    try:
+        handle = find_handle(scene, task, state, cfg, 1.0 if amount > 0 else -1.0)
+    except HandleStaysPutError as exc:      # a usable estimate that moves the handle nowhere: nothing to pull
+        return PlanResult(PlanStatus.OPENING_FAILED, f"{task.kind} {task.joint!r}: {exc}", task, robot.joint_names,
+                          amount=amount, start_object_q=s0, moving_link=scene.joints[task.joint].child, seed=seed,
+                          timings={"total": time.perf_counter() - t_all})
     world = PlanningWorld(kin, scene, task.joint, set(handle.handle_geoms), state, cfg.clearance)
     rng = np.random.default_rng(seed)
     base = dict(task=task, joint_names=robot.joint_names, amount=amount, start_object_q=s0,

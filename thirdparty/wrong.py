@@ -27,13 +27,18 @@ WRONG_KINDS = ("axis30", "door_as_drawer", "wrong_hinge_side")
 
 
 def _corners_world(model: SceneModel, link: str) -> np.ndarray:
-    """(n, 3) world corners of the box collisions (centres of the others) of ``link``, closed state."""
+    """(n, 3) world corners of the box collisions and the bounding boxes of the meshes (centres of the
+    others) of ``link``, closed state."""
     T = model.T_world_link(link)
     pts = []
     for c in model.links[link].collisions:
-        if c.kind.value == "box":
-            s = np.asarray(c.size) / 2
-            local = np.array([[a, b, d] for a in (-1, 1) for b in (-1, 1) for d in (-1, 1)]) * s
+        if c.kind.value in ("box", "mesh"):
+            if c.kind.value == "box":
+                lo, hi = -np.asarray(c.size) / 2, np.asarray(c.size) / 2
+            else:
+                import trimesh
+                lo, hi = trimesh.load(c.mesh, force="mesh").bounds * np.asarray(c.size)
+            local = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
             pts += [(T @ c.T_link_shape @ np.append(p, 1))[:3] for p in local]
         else:
             pts.append((T @ c.T_link_shape)[:3, 3])

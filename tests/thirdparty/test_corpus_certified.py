@@ -40,3 +40,13 @@ def test_a_wrong_estimate_of_a_corpus_front_is_never_certified(corpus, obj, k, k
     task = f"open-drawer:{f.joint}" if kind == "door_as_drawer" else f.task
     t = certify(est, [task], against=o.urdf, images=False).tasks[0]
     assert t.status.value != "certified", t.reason
+
+
+def test_an_estimate_whose_hinge_passes_through_the_handle_is_not_planned_never_unusable(tmp_path):
+    """The 30 deg axis of the wall cabinet's door, tilted about the top of its hinge, passes through the handle:
+    the estimate is usable but moves the handle nowhere. A verdict (not_planned, exit 1), not exit 2."""
+    o = thirdparty.build_object(thirdparty.spec_named("wall_cabinet_double"), tmp_path)
+    f = o.fronts[0]
+    est = wrong_estimate(o.urdf, f.joint, "axis30", tmp_path / "wrong.urdf")
+    t = certify(est, [f.task], against=o.urdf, images=False).tasks[0]
+    assert t.status.value == "not_planned" and "does not move when the joint opens" in t.reason
