@@ -169,8 +169,10 @@ class Session:
         w = self.exec_world
         if out is not None and (images or video):
             handle = handle_link_for(w, task.joint, plan.grasp_link)
+            opening = [s for s in plan.segments if s.name == plan.opening_segment]
+            path = np.concatenate([s.T_world_tool[:, :3, 3] for s in opening]) if opening else np.zeros((1, 3))
             camera = KeyFrameCamera(w, w.scene_link_pose(handle)[:3, 3], self._robot_side(plan), out / "images",
-                                    file_stem(task.joint), video=video)
+                                    file_stem(task.joint), video=video, part_size=float(np.ptp(path, axis=0).max()))
         counter = {"n": 0}
         given = plan.method == "given"
         traced = tuple(i.name for i in w.scene_joints() if i.type in ("prismatic", "revolute", "continuous")) if given else ()

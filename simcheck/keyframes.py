@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from scenes.description import write_with_atomic
+from simcheck.key_frame_view import CAMERA_DISTANCE, CAMERA_HEIGHT, camera_distance
 from simcheck.world import World
 
 __all__ = ["KeyFrameCamera"]
@@ -19,14 +20,15 @@ log = logging.getLogger(__name__)
 
 
 class KeyFrameCamera:
-    """Takes pictures of a task in ``world``, aimed at ``target`` (3,) from the side ``toward`` (3,) points to.
+    """Takes pictures of a task in ``world``, aimed at ``target`` (3,) from the side ``toward`` (3,) points to,
+    from as close as a part of ``part_size`` (m) allows (:func:`simcheck.key_frame_view.camera_distance`).
 
     ``out_dir``/``stem``_``label``.png are written on :meth:`snap`; with ``video=True`` a frame is also
     kept every ``video_every`` calls of :meth:`frame` and :meth:`save_video` writes ``stem``.gif.
     """
 
     def __init__(self, world: World, target: np.ndarray, toward: np.ndarray, out_dir: Path, stem: str,
-                 size=(320, 240), video: bool = False) -> None:
+                 size=(320, 240), video: bool = False, part_size: float | None = None) -> None:
         self.world, self.out_dir, self.stem, self.size, self.video = world, Path(out_dir), stem, size, video
         target = np.asarray(target, float)
         d = np.asarray(toward, float) - target
@@ -34,7 +36,9 @@ class KeyFrameCamera:
         d = d / np.linalg.norm(d) if np.linalg.norm(d) > 1e-6 else np.array([1.0, 0.0, 0.0])
         side = np.array([-d[1], d[0], 0.0])
         self.target = target
-        self.eye = target + 1.9 * d + 1.1 * side + np.array([0.0, 0.0, 1.0])
+        # the farthest view, 30 deg to the side; closer for a small part (part_size, m: the handle's path)
+        scale = (camera_distance(part_size) if part_size is not None else CAMERA_DISTANCE) / CAMERA_DISTANCE
+        self.eye = target + scale * (CAMERA_DISTANCE * d + 1.1 * side + np.array([0.0, 0.0, CAMERA_HEIGHT]))
         self.paths: list[Path] = []
         self.frames: list[np.ndarray] = []
 

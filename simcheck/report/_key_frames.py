@@ -13,23 +13,19 @@ from pathlib import Path
 
 import numpy as np
 
+from simcheck.key_frame_view import CAMERA_DISTANCE, CAMERA_HEIGHT, FOV_DEG, camera_distance
 from simcheck.rollout import Rollout
 
 from ._primitives import Solid, solids_from_urdf
 
-__all__ = ["key_frame_indices", "key_frame_images", "camera_for", "camera_distance", "part_extent", "FRAME_SIZE"]
+__all__ = ["key_frame_indices", "key_frame_images", "camera_for", "part_extent", "FRAME_SIZE"]
 
 log = logging.getLogger(__name__)
 
 #: Width, height of a key frame, pixels.
 FRAME_SIZE = (360, 270)
-#: Camera distance from the handle (m), height above it (m) and angle off the opening direction (deg):
-#: the farthest view; a smaller part is looked at from closer (:func:`camera_distance`).
-CAMERA_DISTANCE, CAMERA_HEIGHT, CAMERA_ANGLE_DEG = 1.9, 1.0, 50.0
-#: The nearest camera distance (m): the gripper and the arm's wrist stay in view.
-MIN_CAMERA_DISTANCE = 1.0
-#: Vertical field of view of the key frames (deg), and the share of it the moving part fills.
-FOV_DEG, PART_FILL = 60.0, 0.6
+#: Angle of the camera off the opening direction (deg); distances: :mod:`simcheck.key_frame_view`.
+CAMERA_ANGLE_DEG = 50.0
 #: The last metres of the line of sight before the handle that may cross parts (the drawer, the body).
 CLEARANCE = 0.3
 
@@ -87,13 +83,6 @@ def part_extent(rollout: Rollout, moving: Sequence[Solid] = ()) -> tuple[np.ndar
     pts = np.concatenate(pts)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     return (lo + hi) / 2, float(np.max(hi - lo))
-
-
-def camera_distance(size: float) -> float:
-    """Distance (m) from which a part of ``size`` (m) fills :data:`PART_FILL` of the frame's height,
-    within [:data:`MIN_CAMERA_DISTANCE`, :data:`CAMERA_DISTANCE`]."""
-    d = size / PART_FILL / (2.0 * np.tan(np.radians(FOV_DEG) / 2))
-    return float(np.clip(d, MIN_CAMERA_DISTANCE, CAMERA_DISTANCE))
 
 
 def camera_for(rollout: Rollout, obstacles: Sequence[Solid] = (), moving: Sequence[Solid] = ()) -> tuple[np.ndarray, np.ndarray]:

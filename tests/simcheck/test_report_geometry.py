@@ -107,7 +107,7 @@ def test_views_cropped_alike_keep_their_framing():
 
 
 def test_a_smaller_part_is_looked_at_from_closer():
-    from simcheck.report._key_frames import CAMERA_DISTANCE, MIN_CAMERA_DISTANCE, camera_distance
+    from simcheck.key_frame_view import CAMERA_DISTANCE, MIN_CAMERA_DISTANCE, camera_distance
 
     assert MIN_CAMERA_DISTANCE <= camera_distance(0.5) < camera_distance(1.2) <= CAMERA_DISTANCE
     assert camera_distance(0.01) == MIN_CAMERA_DISTANCE and camera_distance(10.0) == CAMERA_DISTANCE
