@@ -9,14 +9,14 @@ collisions (:func:`simcheck.plan_recheck.recheck_plan`) and judged by the criter
 a planned task (the expectation's segment playing the opening, the next segment that opens the gripper the
 release) plus: the expectation met by the end of its segment, every other articulation left where it was
 (:mod:`simcheck.plan_expectations`), and the plan's timing within the robot's limits
-(:mod:`simcheck.plan_timing`). The expectation is the task of the certificate (a scenario chains plans, the
-world carried from one to the next).
+(:mod:`simcheck.plan_timing`). Each expectation is a task of the certificate, judged on its part of the plan
+(:func:`expectation_zones`); a plan with several is executed part after part in one world, as a scenario's
+tasks are, each part starting where the robot is.
 
 The binding of a plan to the robot and the scene (:func:`bind_plan`) refuses with exit 2, naming the field: a
 joint the robot lacks or a robot joint the plan lacks, an expectation naming no movable scene joint, a plan
-without expectation or with more than one (the format allows several; the collision re-check and the contact
-criteria know one held part, so this version certifies one opening per plan), and in a scenario a first
-waypoint away from where the robot is.
+without expectation, two expectations of one joint (the certificate has one task per joint) or two without a
+segment opening the gripper between them, and in a scenario a first waypoint away from where the robot is.
 """
 
 from __future__ import annotations
@@ -32,7 +32,7 @@ from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, P
 from simcheck.errors import PlanFileError
 from simcheck.plan_file import GivenPlan, read_plan
 
-__all__ = ["certify_plan", "bind_plan", "followed_values", "given_planner", "given_from_result", "given_criteria", "plan_path",
+__all__ = ["certify_plan", "bind_plan", "expectation_zones", "followed_values", "given_planner", "given_from_result", "given_criteria", "plan_path",
            "START_TOLERANCE"]
 
 log = logging.getLogger(__name__)
@@ -63,12 +63,40 @@ def _check_robot_joints(given: GivenPlan, robot) -> tuple[str, ...]:
     if not given.expectations:
         raise PlanFileError(f"plan {src}: no segment has an 'expect': nothing to certify (say which joint a "
                             "segment should move, e.g. {\"joint\": J, \"from\": 0.0, \"to\": 0.3})")
-    if len(given.expectations) > 1:
-        where = ", ".join(f"segments[{i}] ({given.segments[i].name!r})" for i, _ in given.expectations)
-        raise PlanFileError(f"plan {src}: {where} each have an 'expect': this partscene certifies one opening per "
-                            "plan (the collision re-check and the contact criteria know one held part); give one "
-                            "plan per opening and chain them in a scenario ({plan: FILE} entries)")
+    joints = [e.joint for _, e in given.expectations]
+    twice = next((j for j in joints if joints.count(j) > 1), None)
+    if twice is not None:
+        where = ", ".join(f"segments[{i}]" for i, e in given.expectations if e.joint == twice)
+        raise PlanFileError(f"plan {src}: {where} each expect scene joint {twice!r}: the certificate has one task "
+                            "per joint (give one plan per move of a joint and chain them in a scenario)")
+    expectation_zones(given)
     return robot_names
+
+
+def expectation_zones(given: GivenPlan) -> list[tuple[int, int]]:
+    """(first, last) segment indices, inclusive, of the part of ``given`` each expectation is judged on, in plan
+    order: an expectation's part ends with the first segment after it that opens the gripper (its release)
+    and the next part starts right after; the first part starts with the plan, the last ends with it.
+
+    Raises:
+        PlanFileError: no segment opens the gripper between two expectations (the gripper must let go of one
+            part before it grasps the next).
+    """
+    idx = [i for i, _ in given.expectations]
+    zones, first = [], 0
+    for m, i in enumerate(idx[:-1]):
+        nxt = idx[m + 1]
+        release = next((k for k in range(i + 1, nxt) if given.segments[k].command == "open"), None)
+        if release is None:
+            raise PlanFileError(f"plan {given.source}: field 'segments[{i + 1}:{nxt}]': no segment between "
+                                f"segments[{i}] ({given.segments[i].name!r}) and segments[{nxt}] "
+                                f"({given.segments[nxt].name!r}), which both have an 'expect', opens the gripper: "
+                                "let go of one part (\"gripper\": \"open\") before grasping the next")
+        zones.append((first, release))
+        first = release + 1
+    if idx:
+        zones.append((first, len(given.segments) - 1))
+    return zones
 
 
 def bind_plan(given: GivenPlan, robot, scene_joints: dict, scene) -> list[PlanResult]:
@@ -99,10 +127,11 @@ def bind_plan(given: GivenPlan, robot, scene_joints: dict, scene) -> list[PlanRe
         T[given_tool, :3, 3] = s.T_world_tool[given_tool, :3, 3]
         segments.append(dataclasses.replace(s, q=q, T_world_tool=T))
     plans = []
-    for i, e in given.expectations:
+    for (i, e), (a, b) in zip(given.expectations, expectation_zones(given)):
         segs = []
         moved = followed_values(segments[i].T_world_tool[:, :3, 3], scene_joints[e.joint], e)
-        for k, s in enumerate(segments):
+        for k in range(a, b + 1):
+            s = segments[k]
             obj = moved if k == i else np.full(len(s.t), moved[-1] if k > i else e.start)
             segs.append(dataclasses.replace(s, object_q=obj))
         kind = OPENING_KINDS[str(getattr(scene_joints[e.joint].type, "value", scene_joints[e.joint].type))]
@@ -133,14 +162,22 @@ def followed_values(p_world_tool: np.ndarray, joint, e) -> np.ndarray:
 
 
 class _GivenPlanner:
-    """A planner (``planner(scene, task, seed, start, scene_state)``) that returns the bound given plans; with
-    a ``start`` (a scenario's carried-over robot configuration) the first waypoint must match it."""
+    """A planner (``planner(scene, task, seed, start, scene_state)``) that returns the bound given plans. With a
+    ``start`` (the robot's configuration where the previous task left it): the first part of a plan must start
+    there (a scenario's carried-over state, else PlanFileError); a later part (the next expectation of the same
+    plan) starts from it -- its first waypoint is where the robot is, the previous part's tracking error
+    carried over, not a jump."""
 
     def __init__(self, plans: list[PlanResult], robot, source: str) -> None:
         self.plans, self.robot_spec, self.source = plans, robot, source
 
     def __call__(self, scene, task, seed, start=None, scene_state=None) -> PlanResult:
-        plan = next(p for p in self.plans if p.task == task)
+        k, plan = next((k, p) for k, p in enumerate(self.plans) if p.task == task)
+        if start is not None and k > 0:
+            first = plan.segments[0]
+            q = first.q.copy()
+            q[0] = np.asarray(start, dtype=float)
+            return dataclasses.replace(plan, segments=(dataclasses.replace(first, q=q), *plan.segments[1:]))
         if start is not None:
             q0 = plan.segments[0].q[0]
             off = np.abs(np.asarray(start, dtype=float) - q0)
@@ -189,7 +226,11 @@ def certify_plan(scene, plan, *, against=None, out=None, robot=None, seed: int =
         from simcheck.robot_spec_file import load_robot_spec
         robot = load_robot_spec(given.robot)
     tasks, planner = given_planner(given, robot, scene)
+    if len(tasks) > 1 and (robust is not None or replay_sample is not None):
+        raise PlanFileError(f"plan {given.source}: --robust certifies a plan with one expectation; this one has "
+                            f"{len(tasks)} (give one plan per expectation)")
     return certify(scene, tasks, against=against, out=out, robot=robot, planner=planner, seed=seed, criteria=criteria,
+                   carry_state=len(tasks) > 1,
                    physics=physics, images=images, video=video, gui=gui, robust=robust, min_success=min_success,
                    replay_sample=replay_sample,
                    files={"plan": None if isinstance(plan, GivenPlan) else plan, **(files or {})})

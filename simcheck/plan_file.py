@@ -266,9 +266,17 @@ def _arrays_doc(waypoints, joint_names, t, dt, gripper, name, expect, robot) -> 
 
 
 def join_plans(*plans: GivenPlan) -> GivenPlan:
-    """One plan of the segments of ``plans`` in order (same robot and joint names; checked as a file is)."""
+    """One plan of the segments of ``plans`` in order (same robot and joint names; checked as a file is). A
+    segment name already used by an earlier plan gets the plan's number (1-based): the second plan's
+    ``open`` becomes ``open_2`` (segment names are unique in a plan)."""
     docs = [plan_to_dict(p) for p in plans]
     for p in plans[1:]:
         if p.joint_names != plans[0].joint_names or p.robot != plans[0].robot:
             raise PlanFileError("join_plans: the plans have different robots or joint names")
-    return plan_from_dict({**docs[0], "segments": [s for d in docs for s in d["segments"]]}, "<arrays>")
+    segments, used = [], set()
+    for k, d in enumerate(docs):
+        for s in d["segments"]:
+            name = s["name"] if s["name"] not in used else f"{s['name']}_{k + 1}"
+            segments.append({**s, "name": name})
+            used.add(name)
+    return plan_from_dict({**docs[0], "segments": segments}, "<arrays>")

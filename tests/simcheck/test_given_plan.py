@@ -16,6 +16,7 @@ from simcheck.plan_file import plan_to_dict, read_plan
 from simcheck_fixture_plans import CABINET
 
 DRAWER = "cabinet1_drawer2_joint"
+DOOR = "cabinet2_door4_joint"
 OTHER = "cabinet2_drawer2_joint"
 
 #: how close a replayed criterion must be to the planned run's: 1 % of the value, or this much per unit for
@@ -37,10 +38,12 @@ def _two_cabinets(path):
 
 @pytest.fixture(scope="module")
 def planned(tmp_path_factory):
-    """(scene, the certificate of the planned drawer opening, its saved plan file)."""
+    """(scene, the certificate of the planned drawer opening then door opening (one world, the door planned
+    with the drawer open), the drawer's saved plan file; the door's is beside it)."""
     out = tmp_path_factory.mktemp("given_plan")
     scene = _two_cabinets(out / "two_cabinets.urdf")
-    cert = certify(scene, [f"open-drawer:{DRAWER}"], out=out / "planned", images=False, save_plan=True)
+    cert = certify(scene, [f"open-drawer:{DRAWER}", f"open-door:{DOOR}"], out=out / "planned", images=False,
+                   save_plan=True, carry_state=True)
     assert cert.ok, cert.summary()
     return scene, cert, out / "planned" / "plans" / f"{DRAWER}.plan.json"
 
@@ -165,3 +168,55 @@ def test_the_held_part_follows_the_tool_in_the_recheck():
     a = np.linspace(0, 1.2, 7)
     p = np.stack([0.25 + 0.5 * np.sin(a), -0.28 + 0.5 * np.cos(a), np.full(7, 0.5)], axis=1)   # clockwise seen from +z
     assert np.allclose(followed_values(p, door, Expectation("h", 0.0, 1.5)), a)
+
+
+def _drawer_then_door(plan_path, tmp_path, second=DOOR):
+    """The drawer's plan joined with the door's (planned from where the drawer's execution left the robot: its
+    first waypoint moved onto the drawer plan's last, by the tracking error, < 1 mm or mrad), the door's
+    expectation naming ``second``."""
+    from simcheck.plan_file import join_plans
+    joined = plan_to_dict(join_plans(read_plan(plan_path), read_plan(plan_path.with_name(f"{DOOR}.plan.json"))))
+    last, first = joined["segments"][4]["waypoints"][-1], joined["segments"][5]["waypoints"]
+    assert np.abs(np.subtract(first[0], last)).max() < 1e-3
+    first[0] = last
+    joined["segments"][5].pop("tool_positions", None)
+    joined["segments"][7]["expect"]["joint"] = second
+    out = tmp_path / f"drawer_then_{second}.plan.json"
+    out.write_text(json.dumps(joined))
+    return out
+
+
+def test_a_plan_with_two_expectations_is_judged_per_expectation(planned, tmp_path, capsys):
+    scene, cert, plan_path = planned
+    code, summary = _run(scene, _drawer_then_door(plan_path, tmp_path), tmp_path / "ok", capsys)
+    assert code == 0, summary
+    replay = Certificate.load(tmp_path / "ok")
+    assert [t.joint for t in replay.tasks] == [DRAWER, DOOR]
+    for joint in (DRAWER, DOOR):                      # each part executed and judged as its planned task was
+        for c in cert[joint].criteria:
+            r = replay[joint].criterion(c.name)
+            assert r.passed and abs(r.value - c.value) <= max(0.05 * abs(c.value), 5 * ABS_TOL[c.unit]), \
+                (joint, c.name, c.value, r.value)
+    assert replay[DOOR].start_state[DRAWER] > 0.3     # the drawer stayed open while the door opened
+
+
+def test_a_wrong_second_expectation_fails_that_expectation_only(planned, tmp_path, capsys):
+    scene, _, plan_path = planned
+    code, summary = _run(scene, _drawer_then_door(plan_path, tmp_path, OTHER), tmp_path / "wrong", capsys)
+    assert code == 1
+    first, second = summary["tasks"]
+    assert (first["joint"], first["status"]) == (DRAWER, "certified"), first["reason"]
+    assert (second["joint"], second["status"]) == (OTHER, "failed")
+    assert f"segment 'open_2' expected {OTHER} to move from 0.000" in second["reason"], second["reason"]
+    assert f"moved scene joint {DOOR}" in second["reason"]
+
+
+def test_expectations_without_a_release_between_them_exit_2(planned, tmp_path, capsys):
+    scene, _, plan_path = planned
+
+    def edit(doc):
+        doc["segments"] = doc["segments"][:3] + [dict(doc["segments"][2], name="open_more",
+                                                            expect={"joint": DOOR, "from": 0.0, "to": 1.0})]
+    code = main(["certify-plan", str(scene), str(_edited(plan_path, tmp_path, "norelease", edit)), "-q"])
+    assert code == 2
+    assert "no segment between segments[2] ('open') and segments[3] ('open_more')" in capsys.readouterr().err

@@ -81,8 +81,12 @@ def test_binding_names_a_joint_the_robot_lacks_or_the_plan_lacks():
         bind_plan(plan_from_dict(doc, "doc"), robot, {}, "scene.urdf")
     doc = _doc()
     doc["segments"][0]["expect"] = {"joint": "cabinet1_door4_joint", "from": 0.0, "to": 1.0}
-    with pytest.raises(PlanFileError, match=r"segments\[0\] \('approach'\), segments\[1\] \('open'\) each have an "
-                                            r"'expect': this partscene certifies one opening per plan"):
+    with pytest.raises(PlanFileError, match=r"no segment between segments\[0\] \('approach'\) and segments\[1\] "
+                                            r"\('open'\), which both have an 'expect', opens the gripper"):
+        bind_plan(plan_from_dict(doc, "doc"), robot, {}, "scene.urdf")
+    doc["segments"][0]["expect"]["joint"] = "cabinet1_drawer2_joint"
+    with pytest.raises(PlanFileError, match=r"segments\[0\], segments\[1\] each expect scene joint "
+                                            r"'cabinet1_drawer2_joint': the certificate has one task per joint"):
         bind_plan(plan_from_dict(doc, "doc"), robot, {}, "scene.urdf")
     with pytest.raises(PlanFileError, match=r"'segments\[1\].expect.joint': scene joint 'cabinet1_drawer2_joint' of "
                                             r"scene.urdf does not exist"):
