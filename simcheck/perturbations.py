@@ -11,16 +11,21 @@ The task's joint (world frame, at q = 0):
   σ = axis_deg / √2, so that the RMS angle is ``axis_deg``;
 * hinge line (revolute only; a prismatic joint's axis position does not change its motion): moved across
   the axis by a vector whose two components are N(0, σ²), σ = origin_m / √2 (RMS distance origin_m);
-* upper limit: + N(0, upper²), kept at least a tenth of the centre's.
+* upper limit: a drawer's + N(0, upper²); a door's + uniform in ±√3·upper (the same RMS, bounded: a
+  hinge's stop lies in a range -- furniture hinges stop at 92-110 deg, recon's ``door_stop_prior`` is that
+  range's RMS about its 100 deg estimate -- it has no tails below it); kept at least a tenth of the centre's.
 
 Physics: uniform in :class:`PhysicsRanges`. Robot: base position error N(0, base_xy_m²) along x and y,
 heading N(0, base_yaw_deg²), perceived handle position N(0, handle_m²) per axis, position gain factor
-uniform in ``tracking_gain``. ``mode="physics"`` (robust ``--against`` a reference) leaves the joint and
+uniform in ``tracking_gain``; the re-perception error of the guarded approach N(0, reperception_m²) along x
+and y and N(0, reperception_yaw_deg²) in heading (drawn last: the other draws of a sample do not depend on
+it; zero without ``guarded_approach``). ``mode="physics"`` (robust ``--against`` a reference) leaves the joint and
 the robot as they are and samples the physics ranges only.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,7 +47,10 @@ class Perturbation:
     joint_damping : its dynamics; mass_scale : factor on the moving part's mass and inertia;
     handle_friction : the handles' lateral friction coefficient; base_error : (dx m, dy m, dyaw rad) of
     the robot's base (where it is minus where it thinks); handle_shift : (3,) m, world, the handle's true
-    position minus the perceived one; tracking_gain : factor on the arm's position gain.
+    position minus the perceived one; tracking_gain : factor on the arm's position gain; reperception :
+    (dx m, dy m, dyaw rad), world, the error of the robot's pose relative to the handle left after the
+    guarded approach's correction (:mod:`simcheck.robust_correction`), or None: no correction (the plan is
+    replayed open loop).
     """
 
     index: int
@@ -59,6 +67,7 @@ class Perturbation:
     base_error: tuple[float, float, float]
     handle_shift: tuple[float, float, float]
     tracking_gain: float
+    reperception: tuple[float, float, float] | None = None
 
     def to_dict(self) -> dict:
         return {"sample": self.index, "joint": self.joint, "axis": list(self.axis), "origin": list(self.origin),
@@ -66,7 +75,8 @@ class Perturbation:
                 "joint_friction": self.joint_friction, "joint_damping": self.joint_damping,
                 "mass_scale": self.mass_scale, "handle_friction": self.handle_friction,
                 "base_error": list(self.base_error), "handle_shift": list(self.handle_shift),
-                "tracking_gain": self.tracking_gain}
+                "tracking_gain": self.tracking_gain,
+                "reperception": None if self.reperception is None else list(self.reperception)}
 
 
 def _perpendicular_basis(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -108,6 +118,8 @@ def sample_perturbation(index: int, seed: int, joint: str, joint_type: str, urdf
     base = rng.standard_normal(3) * [robot.base_xy_m, robot.base_xy_m, np.radians(robot.base_yaw_deg)]
     handle = rng.standard_normal(3) * robot.handle_m
     gain = rng.uniform(*robot.tracking_gain)
+    reperceive = rng.standard_normal(3) * [robot.reperception_m, robot.reperception_m,
+                                           np.radians(robot.reperception_yaw_deg)]
     if mode == "physics":
         return Perturbation(int(index), joint, tuple(a_urdf), tuple(o_urdf), float(urdf_upper), 0.0, 0.0,
                             float(friction), float(damping), float(mass), float(handle_friction), (0.0, 0.0, 0.0),
@@ -127,13 +139,16 @@ def sample_perturbation(index: int, seed: int, joint: str, joint_type: str, urdf
         origin = o_c + spreads.origin_m / np.sqrt(2.0) * (z_origin[0] * u1 + z_origin[1] * u2)
     else:
         origin = o_urdf.copy()
+    if joint_type == "revolute":                   # the same draw, mapped to uniform(-√3, √3)
+        z_upper = np.sqrt(3.0) * math.erf(z_upper / np.sqrt(2.0))
     upper = max(u_c + spreads.upper * z_upper, 0.1 * u_c)
     d = origin - o_urdf
     off = float(np.linalg.norm(d - (d @ a_urdf) * a_urdf))
     ang = float(np.degrees(np.arccos(np.clip(axis @ a_urdf, -1.0, 1.0))))
     return Perturbation(int(index), joint, tuple(map(float, axis)), tuple(map(float, origin)), float(upper), ang, off,
                         float(friction), float(damping), float(mass), float(handle_friction),
-                        tuple(map(float, base)), tuple(map(float, handle)), float(gain))
+                        tuple(map(float, base)), tuple(map(float, handle)), float(gain),
+                        tuple(map(float, reperceive)) if robot.guarded_approach else None)
 
 
 def sample_perturbations(n: int, seed: int, *args, **kwargs) -> tuple[Perturbation, ...]:

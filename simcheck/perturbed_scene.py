@@ -25,14 +25,15 @@ from scenes.description import (Dynamics, Joint, JointType, Limit, Link, SceneMo
 from simcheck.estimate_faults import _move_joint_keep_geometry, _shifted
 from simcheck.perturbations import Perturbation
 
-__all__ = ["perturbed_scene", "perturbed_scene_text", "write_perturbed_scene", "ROOT_LINK", "ROOT_JOINT"]
+__all__ = ["perturbed_scene", "perturbed_scene_text", "write_perturbed_scene", "base_error_inverse", "ROOT_LINK", "ROOT_JOINT"]
 
 ROOT_LINK = "robust_root"
 ROOT_JOINT = "robust_base_error"
 
 
-def _T_error_inverse(base_error, pivot_xy) -> np.ndarray:
-    """(4, 4) the inverse of the base error: a rotation by -dyaw about the pivot, then -(dx, dy)."""
+def base_error_inverse(base_error, pivot_xy) -> np.ndarray:
+    """(4, 4) the inverse of the base error (dx m, dy m, dyaw rad): a rotation by -dyaw about the pivot
+    (x, y) m, then a shift by -(dx, dy): where a sampled world puts its scene."""
     dx, dy, dyaw = (float(v) for v in base_error)
     c, s = np.cos(-dyaw), np.sin(-dyaw)
     R = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
@@ -69,7 +70,7 @@ def perturbed_scene(src: str | Path, p: Perturbation, pivot_xy=(0.0, 0.0)) -> Sc
     model = model.replaced(*items)
     model = model.replaced(*_perturbed_handles(model, j.child, p, R_world_part=R))
     if any(abs(v) > 0.0 for v in p.base_error):
-        model = _moved_scene(model, _T_error_inverse(p.base_error, pivot_xy))
+        model = _moved_scene(model, base_error_inverse(p.base_error, pivot_xy))
     return model
 
 

@@ -7,8 +7,10 @@ world, and certify only when the one-sided 95 % Clopper–Pearson lower bound on
   on the estimate or on ``against``); its planner is wrapped to keep the plan.
 * Sample i is :func:`simcheck.perturbations.sample_perturbation` (seed, i) written as a URDF by
   :mod:`simcheck.perturbed_scene` (from the estimate; with ``against``, from the reference, physics ranges
-  only), executed with the plan (the arm's position gain scaled by the sample's tracking factor) and judged
-  by the same rollout criteria. A sample succeeds when every criterion passes.
+  only), executed with the plan (the arm's position gain scaled by the sample's tracking factor; with the
+  guarded approach, the rest of the plan corrected after the approach for the robot's base error as
+  re-perceived: :mod:`simcheck.robust_correction`) and judged by the same rollout criteria. A sample
+  succeeds when every criterion passes.
 * The task is certified when the nominal run is and the bound reaches ``min_success``; its certificate
   gets the ``"robust"`` block (:func:`simcheck.robust_verdict.robust_block`).
 * ``replay_sample=i`` executes sample i alone, in this process (images, video and rollout as usual).
@@ -32,6 +34,7 @@ from scenes.description import file_stem
 from scenes.outcome import Outcome
 from simcheck.perturbations import Perturbation, sample_perturbation
 from simcheck.perturbed_scene import write_perturbed_scene
+from simcheck.robust_correction import guarded_plan
 from simcheck.robust_spreads import (DEFAULT_PHYSICS_RANGES, DEFAULT_ROBOT_ERRORS, JointSpreads, check_robust_args,
                                      joint_spreads_for, spreads_dict)
 from simcheck.robust_verdict import CONFIDENCE, SampleResult, robust_block, robust_outcome
@@ -75,6 +78,8 @@ def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics
     from simcheck.world import World
 
     urdf = write_perturbed_scene(src, p, Path(workdir) / f"sample{p.index}.urdf", pivot)
+    if p.reperception is not None:
+        plan = guarded_plan(plan, p.base_error, p.reperception, pivot, p.handle_shift)
     phys = dataclasses.replace(physics, robot_position_gain=physics.robot_position_gain * p.tracking_gain)
     try:
         with World(urdf, robot, phys) as world:

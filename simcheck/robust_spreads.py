@@ -81,12 +81,21 @@ class RobotErrors:
     base_yaw_deg : σ (deg) of its heading error
     handle_m : σ (m) per axis of the handle position as perceived
     tracking_gain : uniform range of the factor on the arm's position-control gain (controller tracking)
+    guarded_approach : the robot re-perceives the handle once it stands at its stand pose and corrects the
+        rest of its path for its own base error (:mod:`simcheck.robust_correction`); False: the plan is
+        replayed open loop, the base error uncorrected
+    reperception_m : σ (m) per horizontal axis of that re-perception's error (where the robot then thinks
+        the handle is, relative to itself, minus where it is)
+    reperception_yaw_deg : σ (deg) of the heading error of that re-perception (the front's face normal)
     """
 
     base_xy_m: float = 0.014
     base_yaw_deg: float = 1.0
     handle_m: float = 0.005
     tracking_gain: tuple[float, float] = (0.7, 1.3)
+    guarded_approach: bool = True
+    reperception_m: float = 0.003
+    reperception_yaw_deg: float = 0.5
 
 
 DEFAULT_ROBOT_ERRORS = RobotErrors()

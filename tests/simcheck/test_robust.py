@@ -43,7 +43,7 @@ def runs(tmp_path_factory):
     """The unmodified door and the one whose hinge is 3 cm off graph.json's, each certified with N
     samples (robot errors off: the joint and physics spreads decide)."""
     mp = pytest.MonkeyPatch()
-    mp.setattr(simcheck.robust, "DEFAULT_ROBOT_ERRORS", RobotErrors(0.0, 0.0, 0.0, (1.0, 1.0)))
+    mp.setattr(simcheck.robust, "DEFAULT_ROBOT_ERRORS", RobotErrors(0.0, 0.0, 0.0, (1.0, 1.0), guarded_approach=False))
     tmp = tmp_path_factory.mktemp("robust")
     good = _with_graph(tmp / "good", DATA / "cabinet.urdf")
     off = tmp / "off"
@@ -82,7 +82,7 @@ def test_certificate_carries_the_robust_block_and_reads_back(runs):
 
 
 def test_a_failing_sample_replays_alone_with_the_same_outcome(runs, tmp_path, monkeypatch):
-    monkeypatch.setattr(simcheck.robust, "DEFAULT_ROBOT_ERRORS", RobotErrors(0.0, 0.0, 0.0, (1.0, 1.0)))
+    monkeypatch.setattr(simcheck.robust, "DEFAULT_ROBOT_ERRORS", RobotErrors(0.0, 0.0, 0.0, (1.0, 1.0), guarded_approach=False))
     block = runs["off"][DOOR].robust
     fail = block["failures"][0]
     scene = Path(runs["off"].scene)
