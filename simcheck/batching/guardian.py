@@ -18,8 +18,9 @@ import time
 
 __all__ = ["start_guardian", "stop_guardian", "POLL_SECONDS"]
 
-#: seconds between two looks at the driver's descendants
-POLL_SECONDS = 0.5
+#: seconds between two looks at the driver's descendants (a look walks every process of the machine;
+#: Ray starts its services at ``ray.init`` and a worker per CPU at the first tasks)
+POLL_SECONDS = 2.0
 #: seconds the Ray processes get to exit by themselves once the driver is gone
 SETTLE_SECONDS = 1.0
 
