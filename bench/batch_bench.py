@@ -140,9 +140,9 @@ def main(argv: list[str] | None = None) -> int:
     c1 = r1.run["cpu_seconds"]
     fixed = c1["driver"] + c1.get("ray_services", 0.0)
     per_worker2 = r2.run["cpu_seconds"].get("per_worker", [])
-    # on an idle machine the 2-worker run takes about its driver + services time plus its busiest worker's
-    est_speedup = cpu1 / (r2.run["cpu_seconds"]["driver"] + r2.run["cpu_seconds"].get("ray_services", 0.0)
-                          + max(per_worker2, default=0.0))
+    # the workers' split of the work: one worker's CPU time over the busiest of two (Ray's start-up, a few
+    # seconds common to both runs, left out); on an idle machine the wall speed-up comes close to it
+    est_speedup = c1.get("workers", 0.0) / max(per_worker2, default=float("inf"))
     rss = [r["worker"]["peak_rss_mb"] for r in _records(root / "batch2", r2.rows)]
     for w, wall, r, cpu, rate_c, rate_w in ((1, w1, r1, cpu1, rate_cpu1, rate_wall1), (2, w2, r2, cpu2, rate_cpu2, rate_wall2)):
         c = r.run["cpu_seconds"]
@@ -161,7 +161,7 @@ def main(argv: list[str] | None = None) -> int:
           f"amortised over these {n} tasks (over 1,000 tasks: {100 * (per_task + fixed / (1000 * stages['cpu'])):+.1f}%); "
           f"{100 * over_wall:+.1f}% of wall time [idle]")
     print(f"speed-up on 2 cores: {w1 / w2:.2f}x wall [idle] (load average now {os.getloadavg()[0]:.1f}); estimated "
-          f"from CPU times (driver + services + busiest worker): {est_speedup:.2f}x")
+          f"from CPU times (1 worker's / the busiest of 2 workers'; start-up left out): {est_speedup:.2f}x")
     print(f"resume of the finished batch: {wr:.2f} s = {100 * wr / w2:.1f}% of its first run "
           f"(computed {rr.computed}, resumed {rr.resumed})")
     print(f"worker peak resident memory: median {statistics.median(rss):.0f} MB, max {max(rss):.0f} MB")
@@ -174,7 +174,8 @@ def main(argv: list[str] | None = None) -> int:
         (f">= 5,000 certifications per core-hour of wall time, 1 worker ({rate_wall1:,.0f}) [idle]", rate_wall1 >= TARGET_PER_HOUR),
         (f">= 5,000 certifications per core-hour of wall time, 2 workers ({rate_wall2:,.0f}) [idle]", rate_wall2 >= TARGET_PER_HOUR),
         (f"speed-up on 2 cores >= 1.7x ({w1 / w2:.2f}x wall) [idle]", w1 / w2 >= TARGET_SPEEDUP),
-        (f"speed-up on 2 cores >= 1.7x, estimated from CPU times ({est_speedup:.2f}x)", est_speedup >= TARGET_SPEEDUP),
+        (f"speed-up on 2 cores >= 1.7x, the workers' split estimated from CPU times ({est_speedup:.2f}x)",
+         est_speedup >= TARGET_SPEEDUP),
         (f"overhead over plain certify <= 10% of CPU time, Ray start-up included ({100 * over_cpu:+.1f}%)",
          over_cpu <= TARGET_OVERHEAD),
         (f"overhead over plain certify <= 10% of wall time ({100 * over_wall:+.1f}%) [idle]", over_wall <= TARGET_OVERHEAD),
