@@ -126,6 +126,9 @@ class FittingConfig:
     slab_edge_band: float = 0.02
     """A slab's (board's, table top's) edge points lie within this (m) of its outline in its plane; its
     points farther in are its seen face's only (fitting._slab_box)."""
+    slab_min_cut: float = 0.003
+    """... the edge points counted lie at least this (m) behind the seen face (on a clean scan 2.5σ is
+    about 0 and the face's own points would count as edge points at depth 0)."""
     slab_max_tilt: float = 0.2
     """... the slab's box is turned onto the plane of its seen face by at most this (rad)."""
     slab_hidden_fraction: float = 0.05

@@ -280,8 +280,11 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
         lo, hi = -prim.size / 2, prim.size / 2
         if side is None or prim.size[k] >= config.front_thickness or not _vertical_panel(
                 lo, hi, k, prim.T_world_part[:3, :3], config):
+            # a slab whose edges show it notably thinner than its box (noise just under the floor) is measured
             slab = _slab_box(prim, q, k, bool(f % 2), config)
-            return (prim, False) if slab is None else (slab, False)
+            if slab is None or slab.size[k] > prim.size[k] - config.noise_floor:
+                return prim, False
+            return slab, False
         # (a face-only cloud got min_thickness about the face: the face is the median of its points)
         seen = float(np.median(q[_facing(normals, seen_mask, prim.T_world_part[:3, k], config), k]))
         lo, hi = lo.copy(), hi.copy()
@@ -470,7 +473,7 @@ def _slab_box(prim: Primitive, q: np.ndarray, k: int, plus: bool, config: Fittin
     sigma = _mad_sigma(interior)
     inward = -1.0 if plus else 1.0
     depth = (q[:, k] - seen) * inward
-    cut = 2.5 * sigma
+    cut = max(2.5 * sigma, config.slab_min_cut)
     if np.mean(depth[~band] > cut) >= config.slab_hidden_fraction:
         return None
     rim = depth[band & (depth > cut)]
