@@ -26,22 +26,39 @@ def joint_differences(est: SceneJoint, ref: SceneJoint | None) -> list[str]:
     if ref is None:
         return [f"the reference has no joint {est.name!r}"]
     out = []
-    if est.type != ref.type:
+    kind = {"continuous": "revolute"}            # a continuous hinge is a revolute one without limits
+    if kind.get(str(est.type), str(est.type)) != kind.get(str(ref.type), str(ref.type)):
         out.append(f"joint {est.name} is {est.type} in the estimate but {ref.type} in the reference")
         return out
-    angle = axis_angle_deg(est.axis_world, ref.axis_world)
+    # compared as they open: a file whose joint opens toward negative values (axis flipped, range negative)
+    # describes the same motion as one that opens toward positive values
+    s_est, s_ref = _opens(est), _opens(ref)
+    angle = axis_angle_deg(s_est * est.axis_world, s_ref * ref.axis_world)
     if angle > AXIS_TOLERANCE_DEG:
         out.append(f"the estimated axis of {est.name} is {angle:.0f} deg off the reference axis")
-    if est.type == "revolute":
+    if est.type != "prismatic":
         d = float(np.linalg.norm(np.cross(ref.origin_world - est.origin_world, ref.axis_world)))
         if d > ORIGIN_TOLERANCE:
             out.append(f"the estimated hinge of {est.name} is {d:.3f} m from the reference hinge"
                        + (" (hinged on the wrong side)" if angle > 90 or d > 0.2 else ""))
     ref_range = max(ref.upper - ref.lower, 1e-9)
-    if est.upper - ref.upper > LIMIT_TOLERANCE * ref_range:
-        out.append(f"the estimated upper limit of {est.name} ({est.upper:.3f} {est.unit}) exceeds the "
-                   f"reference's ({ref.upper:.3f} {ref.unit})")
+    if str(ref.type) == "continuous" or str(est.type) == "continuous":
+        return out                               # no stop to compare with
+    if s_est > 0 and s_ref > 0:
+        if est.upper - ref.upper > LIMIT_TOLERANCE * ref_range:
+            out.append(f"the estimated upper limit of {est.name} ({est.upper:.3f} {est.unit}) exceeds the "
+                       f"reference's ({ref.upper:.3f} {ref.unit})")
+    else:
+        e, r = (est.upper if s_est > 0 else -est.lower), (ref.upper if s_ref > 0 else -ref.lower)
+        if e - r > LIMIT_TOLERANCE * ref_range:
+            out.append(f"the estimated opening range of {est.name} ({e:.3f} {est.unit}) exceeds the "
+                       f"reference's ({r:.3f} {ref.unit})")
     return out
+
+
+def _opens(j: SceneJoint) -> float:
+    """+1 when ``j`` opens toward its upper limit (the farther one from 0; ties: upper), else -1."""
+    return 1.0 if j.upper >= -j.lower else -1.0
 
 
 def joint_mapping(est: SceneJoint, ref: SceneJoint | None) -> dict | None:

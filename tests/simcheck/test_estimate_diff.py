@@ -39,3 +39,17 @@ def test_differences_are_named_beyond_their_tolerance(est, says):
 
 def test_a_joint_missing_from_the_reference_is_named():
     assert joint_differences(REF, None) == ["the reference has no joint 'fridge_door_joint'"]
+
+
+def test_a_reference_with_the_other_sign_convention_or_a_continuous_hinge_differs_in_nothing():
+    """Issue 11: a reference whose door opens toward negative values about the flipped axis, or turns on a
+    continuous joint, describes the same motion as the estimate: no difference is named."""
+    flipped = SceneJoint("fridge_door_joint", "revolute", "body", "door", -1.6, 0.0, np.array([0.0, 0.0, -1.0]),
+                         np.zeros(3))
+    assert joint_differences(_door(), flipped) == []
+    assert joint_differences(_door(), _door(type_="continuous", upper=0.0)) == []
+    wider = SceneJoint("fridge_door_joint", "revolute", "body", "door", -1.2, 0.0, np.array([0.0, 0.0, -1.0]),
+                       np.zeros(3))
+    assert joint_differences(_door(), wider) == [
+        "the estimated opening range of fridge_door_joint (1.600 rad) exceeds the reference's (1.200 rad)"]
+    assert "180 deg off" in joint_differences(_door(), _door(axis=(0.0, 0.0, -1.0)))[0]   # same sign: opposite
