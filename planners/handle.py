@@ -233,10 +233,12 @@ def _name(cand) -> str:
 
 
 def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerConfig,
-                direction: float = 1.0) -> HandleGrasp:
+                direction: float = 1.0, amount: float = 0.0) -> HandleGrasp:
     """Find the handle of the part moved by ``task.joint`` with the scene at joint ``values``; ``direction``
     +1 / -1: the joint opens toward increasing / decreasing values (the outward side is where the handle
-    moves when it opens)."""
+    moves when it opens). ``amount`` (rad, signed; 0: unknown): how far a revolute joint will turn; on a
+    door that swings up or down (a horizontal hinge) the approach turns with it, and the first grasp
+    candidates are tilted so that the approach is tilted by ``cfg.grasp_tilt`` half-way through the swing."""
     j = scene.joints[task.joint]
     moving = j.child
     where = f"{scene.path}: joint {task.joint!r}"
@@ -324,20 +326,32 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
     if depth_geom is not None:
         n_geom = depth_geom[2][:3, :3].T @ (T_world_moving[:3, :3].T @ n)   # the outward direction, geometry frame
         backoff = min(backoff, cfg.grasp_backoff_share * _depth_along(depth_geom[1], n_geom))
-    frames = _grasp_frames(p_world, n, axis_world, task.kind, cfg.grasp_tilt, backoff)
+    swing = 0.0
+    if j.type != "prismatic" and amount:
+        T_end = scene.T_world_link(moving, {**values, task.joint: float(values.get(task.joint, 0.0)) + amount})
+        z_end = T_end[:3, :3] @ (T_world_moving[:3, :3].T @ -n)
+        swing = float(np.arcsin(np.clip(z_end[2], -1, 1)) - np.arcsin(np.clip(-n[2], -1, 1)))
+    frames = _grasp_frames(p_world, n, axis_world, task.kind, cfg.grasp_tilt, backoff, swing)
     T_link = tuple(np.linalg.solve(T_world_moving, T) for T in frames)
     geoms = frozenset((c[0], c[3]) for c in cands)
     log.debug("%s: handle via %s at %s, outward %s", where, source, p_world.round(3), n.round(3))
     return HandleGrasp(moving, grasp_link, geoms, T_link, width, source)
 
 
+#: a swing that turns the approach up or down by more than this (rad) gets the swing-centred grasp first
+_SWING_CENTRED = np.radians(10.0)
+
+
 def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kind: str, tilt: float,
-                  backoff: float) -> list:
+                  backoff: float, swing: float = 0.0) -> list:
     """Candidate ``(4, 4)`` world grasp frames at ``p`` approaching along ``-n`` with x along the bar.
 
     In order of preference: tilted (horizontal bars only) then level; at the bar centre, then held
     ``backoff`` metres further out (a short knob close to the part's face leaves no room for the fingertips);
-    each also turned half a turn about the approach axis.
+    each also turned half a turn about the approach axis. ``swing`` (rad, up positive): how much the
+    approach's elevation changes over the opening (a door hinged at the bottom turns it up, a flap hinged
+    at the top down); beyond :data:`_SWING_CENTRED` a horizontal bar is first grasped tilted by
+    ``tilt + swing / 2`` downward, so the approach is tilted by ``tilt`` half-way through the swing.
     """
     z = -n
     ez = np.array([0.0, 0.0, 1.0])
@@ -354,10 +368,10 @@ def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kin
     R0 = np.column_stack([x, np.cross(z, x), z])
     rotations = [R0]
     if abs(x @ ez) < 0.5 and tilt > 0:   # horizontal bar: tilt the approach downward about the bar
-        Rt = R_about(x, tilt)
-        if (Rt @ z) @ ez > z @ ez:
-            Rt = R_about(x, -tilt)
-        rotations = [Rt @ R0, R0]
+        down = 1.0 if (R_about(x, tilt) @ z) @ ez <= z @ ez else -1.0
+        rotations = [R_about(x, down * tilt) @ R0, R0]
+        if abs(swing) > _SWING_CENTRED:
+            rotations.insert(0, R_about(x, down * (tilt + swing / 2)) @ R0)
     out = []
     for depth in (0.0, backoff):
         for R in rotations:

@@ -60,7 +60,7 @@ def solve_ik(pose_jacobian, T_target: np.ndarray, q_seed: np.ndarray, lower: np.
              active: np.ndarray | None = None, weights: np.ndarray | None = None, *, pos_tol: float = 1e-3,
              rot_tol: float = 1e-2, damping: float = 0.05, max_iter: int = 80, max_step: float = 0.3,
              restarts: int = 0, rng: np.random.Generator | None = None, restart_span: np.ndarray | None = None,
-             accept=None) -> IKResult:
+             accept=None, position_only: bool = False) -> IKResult:
     """Move the tool to ``T_target (4, 4)`` starting from ``q_seed (dof,)``.
 
     Args:
@@ -71,6 +71,8 @@ def solve_ik(pose_jacobian, T_target: np.ndarray, q_seed: np.ndarray, lower: np.
             ``restart_span`` (dof,) the draw is ``q_seed +- span`` clipped to the limits instead).
         accept (callable ``q -> bool`` or None): Extra test a converged solution must pass (e.g. collision-free);
             otherwise the next restart runs.
+        position_only (bool): Move the tool origin to the target's position, whatever the orientation
+            (``rot_error`` is still reported); out of reach, the result is the nearest position the iteration got to.
     """
     dof = len(q_seed)
     act = np.ones(dof, bool) if active is None else np.asarray(active, bool)
@@ -88,7 +90,8 @@ def solve_ik(pose_jacobian, T_target: np.ndarray, q_seed: np.ndarray, lower: np.
             else:
                 draw = np.clip(q_seed + rng.uniform(-1, 1, dof) * restart_span, lower, upper)
             q = np.where(act, draw, q_seed)
-        res = _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping, max_iter, max_step)
+        res = _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping, max_iter, max_step,
+                   position_only)
         if res.success and (accept is None or accept(res.q)):
             return res
         if best is None or res.pos_error + 0.1 * res.rot_error < best.pos_error + 0.1 * best.rot_error:
@@ -102,9 +105,20 @@ def _norm(v: np.ndarray) -> float:
     return math.sqrt(v.dot(v))
 
 
-def _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping, max_iter, max_step) -> IKResult:
+def _dls_step(J: np.ndarray, e: np.ndarray, W: np.ndarray, damp: np.ndarray) -> np.ndarray:
+    """Damped least-squares joint step ``(dof,)`` for the task error ``e`` with the columns of ``J`` scaled by
+    ``W`` (the square roots of the joint weights)."""
+    Jw = J * W
+    return W * (Jw.T @ np.linalg.solve(Jw @ Jw.T + damp, e))
+
+
+def _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping, max_iter, max_step,
+         position_only=False) -> IKResult:
     W = np.sqrt(w)
-    damp = damping ** 2 * np.eye(6)
+    rows = 3 if position_only else 6
+    damp = damping ** 2 * np.eye(rows)
+    if position_only:
+        rot_tol = np.inf
     history = []
     for it in range(1, max_iter + 1):
         T, J = pose_jacobian(q)
@@ -112,11 +126,15 @@ def _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping,
         pe, re = _norm(e[:3]), _norm(e[3:])
         if pe < pos_tol and re < rot_tol:
             return IKResult(True, q, pe, re, it)
-        history.append(pe + 0.1 * re)
+        history.append(pe + (0.0 if position_only else 0.1 * re))
         if it > 20 and history[-1] > 0.97 * history[-11]:   # stalled (a limit or out of reach): give up early
             return IKResult(False, q, pe, re, it)
-        Jw = J * W
-        dq = W * (Jw.T @ np.linalg.solve(Jw @ Jw.T + damp, e))
+        dq = _dls_step(J[:rows], e[:rows], W, damp)
+        # a joint at a limit that the step pushes further out takes no part in the step (otherwise clipping
+        # it bends the step away from the target and the iteration stalls)
+        pinned = ((q <= lower) & (dq < 0)) | ((q >= upper) & (dq > 0))
+        if pinned.any():
+            dq = _dls_step(J[:rows], e[:rows], np.where(pinned, 0.0, W), damp)
         n = float(np.max(np.abs(dq)))
         if n > max_step:
             dq *= max_step / n

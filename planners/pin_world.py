@@ -65,18 +65,26 @@ class RobotKinematics:
         self.tool_id = self.model.getFrameId(spec.tool_frame)
         self.lower = np.array(self.model.lowerPositionLimit)[self.idx_q]
         self.upper = np.array(self.model.upperPositionLimit)[self.idx_q]
+        #: (dof,) bool: the prismatic planned joints (the base's x, y and a torso lift, metres)
+        self.prismatic = np.array([self.model.joints[self.model.getJointId(n)].shortname().startswith("JointModelP")
+                                   and "Planar" not in self.model.joints[self.model.getJointId(n)].shortname()
+                                   for n in spec.joint_names])
         _convexify(self.geom_model)
         self.geom_links = [self.model.frames[go.parentFrame].name for go in self.geom_model.geometryObjects]
         self._add_self_pairs()
         self.geom_data = pin.GeometryData(self.geom_model)
         self.q_full = pin.neutral(self.model)
         self.set_fingers(spec.finger_open)
-        self.shoulder_joint = self.model.getJointId(spec.arm_joints[0])
+        # The shoulder: the first revolute arm joint; the prismatic arm joints before it (a torso lift) move it.
+        arm_cols = np.arange(len(spec.base_joints), spec.dof)
+        first = next((c for c in arm_cols if not self.prismatic[c]), arm_cols[0])
+        self.lift_cols = np.array([c for c in arm_cols if c < first], dtype=int)
+        self.shoulder_joint = self.model.getJointId(spec.joint_names[first])
         self.reach = self._reach()
 
     def _reach(self, n: int = 400) -> float:
-        """Largest tool distance (m) from the first arm joint's origin over ``n`` seeded random arm
-        configurations, plus 5%: a cheap upper bound for rejecting stand poses out of reach."""
+        """Largest tool distance (m) from the shoulder's origin over ``n`` seeded random arm configurations,
+        plus 5%: a cheap upper bound for rejecting stand poses out of reach."""
         rng = np.random.default_rng(0)
         best = 0.0
         for _ in range(n):
@@ -86,10 +94,22 @@ class RobotKinematics:
         return 1.05 * best
 
     def shoulder(self, q: np.ndarray) -> np.ndarray:
-        """``(3,)`` world position of the first arm joint's origin at ``q``."""
+        """``(3,)`` world position of the shoulder (the first revolute arm joint's origin) at ``q``."""
         qf = self.full_q(q)
         pin.forwardKinematics(self.model, self.data, qf)
         return np.array(self.data.oMi[self.shoulder_joint].translation)
+
+    def shoulder_distance(self, q: np.ndarray, p: np.ndarray) -> float:
+        """Distance (m) from the world point ``p (3,)`` to the shoulder, over the travel of the prismatic
+        joints before it (a torso lift), the base and the other joints as in ``q (dof,)``."""
+        a = q.copy()
+        a[self.lift_cols] = self.lower[self.lift_cols]
+        b = q.copy()
+        b[self.lift_cols] = self.upper[self.lift_cols]
+        pa, pb_ = self.shoulder(a), self.shoulder(b)
+        d = pb_ - pa
+        u = float(np.clip((p - pa) @ d / max(d @ d, 1e-12), 0.0, 1.0))
+        return float(np.linalg.norm(p - (pa + u * d)))
 
     def _joint_index(self, name: str) -> int:
         if not self.model.existJointName(name):

@@ -105,7 +105,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     amount = _validate(scene, task, s0, cfg)
     kin = robot_kinematics(robot)
     try:
-        handle = find_handle(scene, task, state, cfg, 1.0 if amount > 0 else -1.0)
+        handle = find_handle(scene, task, state, cfg, 1.0 if amount > 0 else -1.0, amount)
     except HandleStaysPutError as exc:      # a usable estimate that moves the handle nowhere: nothing to pull
         return PlanResult(PlanStatus.OPENING_FAILED, f"{task.kind} {task.joint!r}: {exc}", task, robot.joint_names,
                           amount=amount, start_object_q=s0, moving_link=scene.joints[task.joint].child, seed=seed,
@@ -132,11 +132,18 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
         T_world_joint = scene.T_world_link(j.parent, state) @ j.T_parent_joint
         if abs((T_world_joint[:3, :3] @ j.axis)[2]) > 0.9:   # a vertical hinge: a side-swinging door
             hinge_xy = T_world_joint[:2, 3]
-    stands, summary = find_stand_poses(kin, world, T_paths, s_path, cfg, rng, hinge_xy)
+    stands, summary, miss = find_stand_poses(kin, world, T_paths, s_path, cfg, rng, hinge_xy)
     timings["stand"] = time.perf_counter() - t
     if not stands:
+        grasp_at = np.round(T_paths[0][0][:3, 3], 3).tolist()
+        if miss is None:
+            missed = "every base pose sampled collides"
+        elif miss > cfg.ik_pos_tol:
+            missed = f"nearest miss {miss:.3f} m: the handle at {grasp_at} is out of the robot's reach"
+        else:
+            missed = f"nearest miss {miss:.3f} m: the handle at {grasp_at} is within reach, but no grasp is"
         return result(PlanStatus.NO_STAND_POSE, f"{task.kind} {task.joint!r}: no stand pose from which the "
-                      f"handle can be grasped collision-free ({summary})")
+                      f"handle can be grasped collision-free ({missed}; {summary})", nearest_miss=miss)
     arm = np.zeros(robot.dof, bool)
     arm[3:] = True
     whole = np.ones(robot.dof, bool)
@@ -279,6 +286,11 @@ def _what(world, q, s) -> str:
     return "collision " + ", ".join(f"{a} / {b}" for a, b in pairs[:3]) if pairs else "collision"
 
 
+#: how far (m or rad) a given start configuration may lie beyond a joint limit and still be planned from, moved
+#: onto the limit: a robot that ended the previous task on a limit reads back a hair beyond it
+_START_LIMIT_SLACK = 1e-3
+
+
 def _start_configuration(world, spec, stand: StandPose, start, cfg, s0):
     """The robot's start: given, or behind the stand pose with the arm at home."""
     if start is not None:
@@ -286,6 +298,9 @@ def _start_configuration(world, spec, stand: StandPose, start, cfg, s0):
         if q.shape != (spec.dof,):
             raise PlannerInputError(f"start configuration must have {spec.dof} values ({', '.join(spec.joint_names)}), "
                                     f"got shape {q.shape}")
+        lower, upper = world.robot.lower, world.robot.upper
+        if np.all(q >= lower - _START_LIMIT_SLACK) and np.all(q <= upper + _START_LIMIT_SLACK):
+            q = np.clip(q, lower, upper)   # a measured start (the end of an executed task) sits on a limit
         if not world.within_limits(q):
             out = np.flatnonzero((q < world.robot.lower - LIMIT_TOLERANCE) | (q > world.robot.upper + LIMIT_TOLERANCE))
             i = int(out[0])

@@ -5,10 +5,14 @@ with a lateral offset and the base turned roughly toward the handle. A pose is k
 reaches the grasp collision-free; it is *complete* when arm-only IK (base fixed) also reaches the handle
 at ``cfg.stand_path_samples`` points spread along the whole opening path (for a door, the arc).
 Ranking: complete poses first, then the share of the path reached, then the reach margin (the smallest
-normalised distance of an arm joint to its limit along the path) plus the clearance between the arm/base
+normalised distance of a revolute arm joint to its limit along the path; a torso lift at the end of its
+travel is no strain) plus the clearance between the arm/base
 and the scene at the grasp (metres, capped at 0.1).
 
-When no pose reaches the grasp, the summary names what the grasp configurations collide with (e.g. on
+When no pose reaches the grasp, the search reports the nearest miss: the smallest distance (m) between the
+tool and the grasp point that position-only IK (collisions ignored) gets to from the sampled base poses
+(0 when the handle is within reach but every grasp collides or needs an orientation the arm cannot take),
+and the summary names what the grasp configurations collide with (e.g. on
 realistic reconstructions: the fingers inside a noise-inflated front or body box in front of the handle,
 ``panda_leftfinger_0 / scene::microwave2_body8_0``), from a few seeds re-solved without collision checks.
 """
@@ -18,13 +22,14 @@ from __future__ import annotations
 import logging
 import math
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 
 from planners.config import PlannerConfig
 from planners.ik import solve_ik
 
-__all__ = ["StandPose", "find_stand_poses"]
+__all__ = ["StandPose", "StandSearch", "find_stand_poses"]
 
 log = logging.getLogger(__name__)
 
@@ -63,20 +68,31 @@ class StandPose:
         return (-self.path_share, -(self.reach_margin + min(self.clearance, 0.1)))
 
 
-def _margin(q: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> float:
-    span = np.maximum(upper[3:] - lower[3:], 1e-9)
-    return float(np.min(np.minimum(q[3:] - lower[3:], upper[3:] - q[3:]) / span))
+class StandSearch(NamedTuple):
+    """What :func:`find_stand_poses` found: ``poses`` best first; ``summary``, how many were tried and why
+    they failed; ``nearest_miss`` (m) when no pose reaches the grasp (None otherwise, or when no base pose
+    was collision-free to measure it from)."""
+
+    poses: list
+    summary: str
+    nearest_miss: float | None = None
+
+
+def _margin(q: np.ndarray, lower: np.ndarray, upper: np.ndarray, cols: np.ndarray) -> float:
+    """Smallest normalised distance (0..0.5) of ``q[cols]`` to the joint limits."""
+    span = np.maximum(upper[cols] - lower[cols], 1e-9)
+    return float(np.min(np.minimum(q[cols] - lower[cols], upper[cols] - q[cols]) / span))
 
 
 def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: PlannerConfig,
-                     rng: np.random.Generator, hinge_xy: np.ndarray | None = None) -> tuple[list[StandPose], str]:
+                     rng: np.random.Generator, hinge_xy: np.ndarray | None = None) -> StandSearch:
     """Sample and rank stand poses for grasp paths ``T_paths`` (one ``(m, 4, 4)`` array per grasp candidate)
     at task joint values ``s_samples (m,)``.
 
     ``hinge_xy (2,)``: for a door, a point of its (vertical) hinge line; the lateral offsets are then
     biased away from the hinge (``cfg.door_lateral``), so the base stands clear of the swinging panel.
 
-    Returns ``(poses best first, summary)``; ``summary`` says how many were tried and why they failed.
+    Returns a :class:`StandSearch`.
     """
     spec = kin.spec
     lower, upper = world.robot.lower, world.robot.upper
@@ -94,11 +110,13 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
         lat_range = cfg.door_lateral
     arm = np.zeros(spec.dof, bool)
     arm[3:] = True
+    strained = arm & ~kin.prismatic   # the columns of the reach margin
     m = len(s_samples)
     idx = np.unique(np.linspace(0, m - 1, max(2, cfg.stand_path_samples)).round().astype(int))
     kept: list[StandPose] = []
     n_ik = n_complete = 0
     missed: list[np.ndarray] = []   # base-feasible seeds from which no grasp was reached (for the reason)
+    far: list[tuple[float, np.ndarray]] = []   # base-feasible seeds rejected as out of reach (for the miss)
     for trial in range(cfg.stand_candidates):
         d = rng.uniform(*cfg.stand_distance)
         lat = rng.uniform(*lat_range)
@@ -108,7 +126,9 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
         q_seed = spec.q_with_base(spec.home_q, xy[0], xy[1], yaw)
         if world.in_collision(q_seed, s_samples[0], True):   # base (arm at home) collides: cheap rejection
             continue
-        if np.linalg.norm(kin.shoulder(q_seed) - p0) > kin.reach:   # grasp out of the arm's reach
+        dist = kin.shoulder_distance(q_seed, p0)
+        if dist > kin.reach:   # grasp out of the arm's reach
+            far.append((dist, q_seed))
             continue
         best, successes = None, 0
         for gi, T_path in enumerate(T_paths):
@@ -121,7 +141,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
                 continue
             n_ik += 1
             successes += 1
-            q, reached, margin = r.q, 1, _margin(r.q, lower, upper)
+            q, reached, margin = r.q, 1, _margin(r.q, lower, upper, strained)
             for k in idx[1:]:
                 rk = solve_ik(kin.tool_pose_jacobian, T_path[k], q, lower, upper, arm, None,
                               pos_tol=cfg.track_pos_tol, rot_tol=cfg.track_rot_tol, restarts=1, rng=rng,
@@ -129,7 +149,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
                               accept=lambda q, s=s_samples[k]: not world.in_collision(q, s, True))
                 if not rk.success:
                     break
-                q, reached, margin = rk.q, reached + 1, min(margin, _margin(rk.q, lower, upper))
+                q, reached, margin = rk.q, reached + 1, min(margin, _margin(rk.q, lower, upper, strained))
             cand = StandPose(np.array([xy[0], xy[1], yaw]), r.q, gi, reached / len(idx), margin)
             if best is None or cand.rank_key() < best.rank_key():
                 best = cand
@@ -149,9 +169,22 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
     kept.sort(key=StandPose.rank_key)
     summary = (f"{trial + 1} stand poses sampled, IK reached the grasp from {n_ik}, the whole opening path "
                f"(base fixed) from {n_complete}")
-    if not kept and missed:
+    if kept:
+        return StandSearch(kept, summary)
+    if missed:
         summary += _grasp_blockers(kin, world, T_paths, s_samples[0], missed, cfg)
-    return kept, summary
+    seeds = missed + [q for _, q in sorted(far, key=lambda dq: dq[0])[:_DIAGNOSED_SEEDS]]
+    miss = _nearest_miss(kin, world, T_paths[0][0], seeds) if seeds else None
+    return StandSearch(kept, summary, miss)
+
+
+def _nearest_miss(kin, world, T_grasp: np.ndarray, seeds: list) -> float:
+    """Smallest distance (m) from the tool origin to the grasp point ``T_grasp[:3, 3]`` that position-only
+    IK of the arm joints (collisions ignored) reaches from the base poses of ``seeds`` ((dof,) each)."""
+    arm = np.zeros(kin.spec.dof, bool)
+    arm[3:] = True
+    return min(solve_ik(kin.tool_pose_jacobian, T_grasp, q, world.robot.lower, world.robot.upper, arm, None,
+                        pos_tol=1e-3, max_iter=200, position_only=True).pos_error for q in seeds)
 
 
 _DIAGNOSED_SEEDS = 3

@@ -324,6 +324,9 @@ class PlanResult:
             an explicit grasp point); simcheck attaches the gripper to it.
         method: how the opening was planned ("constrained" or "ik_tracking"; "" when not planned).
         timings: seconds per stage; collision_checks : count; seed : the seed used.
+        nearest_miss: with ``NO_STAND_POSE``, the smallest distance (m) between the tool and the grasp point
+            that the arm reached from the sampled base poses (collisions ignored; 0 when the handle is within
+            reach but every grasp collides); None otherwise.
     """
 
     status: PlanStatus
@@ -341,6 +344,7 @@ class PlanResult:
     timings: dict = field(default_factory=dict)
     collision_checks: int = 0
     seed: int = 0
+    nearest_miss: float | None = None
 
     @property
     def ok(self) -> bool:

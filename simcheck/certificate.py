@@ -70,6 +70,9 @@ class TaskCertificate:
             (:func:`simcheck.estimate_diff.joint_mapping`: its name, type, limits and ``direction`` +1 / -1,
             -1 when the reference's axis is opposite the estimate's); None without a reference or when the
             reference has no joint of that name.
+        nearest_miss: for an ``unreachable`` task, the smallest distance (m) between the robot's tool and
+            the grasp point over the base poses tried (0 when the handle is within reach but every grasp
+            collides); None otherwise.
     """
 
     kind: str
@@ -88,6 +91,7 @@ class TaskCertificate:
     start_robot_q: dict = field(default_factory=dict)
     robust: dict | None = None
     reference_joint: dict | None = None
+    nearest_miss: float | None = None
 
     @property
     def ok(self) -> bool:
@@ -111,7 +115,8 @@ class TaskCertificate:
                 "timings": dict(self.timings), "rollout": self.rollout,
                 "images": list(self.images), "criteria": [c.to_dict() for c in self.criteria],
                 **({} if self.robust is None else {"robust": self.robust}),
-                **({} if self.reference_joint is None else {"reference_joint": dict(self.reference_joint)})}
+                **({} if self.reference_joint is None else {"reference_joint": dict(self.reference_joint)}),
+                **({} if self.nearest_miss is None else {"nearest_miss": float(self.nearest_miss)})}
 
     @classmethod
     def from_dict(cls, d: dict) -> "TaskCertificate":
@@ -124,7 +129,8 @@ class TaskCertificate:
                    seed=int(d.get("seed", 0)), timings=dict(d.get("timings", {})), rollout=d.get("rollout", ""),
                    images=tuple(d.get("images", [])), plan_status=d.get("plan_status", ""),
                    start_state=dict(d.get("start_state", {})), start_robot_q=dict(d.get("start_robot_q", {})),
-                   robust=d.get("robust"), reference_joint=d.get("reference_joint"))
+                   robust=d.get("robust"), reference_joint=d.get("reference_joint"),
+                   nearest_miss=None if d.get("nearest_miss") is None else float(d["nearest_miss"]))
 
 
 @dataclass(frozen=True)

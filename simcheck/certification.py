@@ -140,7 +140,7 @@ class Session:
                 reason += " -- estimate vs reference: " + "; ".join(hints)
             return TaskCertificate(task.action, task.joint, outcome_of_unplanned(plan.status), reason,
                                    float(plan.amount), unit, (plan_found(False, plan.reason),), seed, timings,
-                                   plan_status=plan.status.name)
+                                   plan_status=plan.status.name, nearest_miss=plan.nearest_miss)
         if out is not None and self.save_plan and plan.method != "given":
             from simcheck.given_plan import given_from_result, plan_path
             from simcheck.plan_file import write_plan

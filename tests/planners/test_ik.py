@@ -27,11 +27,14 @@ def test_ik_reaches_poses_of_random_configurations(robot):
     rng = np.random.default_rng(1)
     ok = 0
     n = 30
+    # restarts: the base within 1 m of its seed (a draw over its +-50 m limits is never within an IK's reach)
+    span = np.r_[np.full(3, 1.0), kin.upper[3:] - kin.lower[3:]]
     for _ in range(n):
         q_true = rng.uniform(kin.lower, kin.upper)
         q_true[:3] = rng.uniform(-0.5, 0.5, 3)
         T = kin.tool_pose(q_true)
-        r = solve_ik(kin.tool_pose_jacobian, T, robot.home_q, kin.lower, kin.upper, restarts=10, rng=rng)
+        r = solve_ik(kin.tool_pose_jacobian, T, robot.home_q, kin.lower, kin.upper, restarts=10, rng=rng,
+                     restart_span=span)
         if r.success:
             ok += 1
             assert np.allclose(kin.tool_pose(r.q)[:3, 3], T[:3, 3], atol=1e-3)
@@ -44,7 +47,7 @@ def test_arm_only_ik_keeps_the_base_fixed(robot):
     q0 = robot.q_with_base(robot.home_q, 0.3, -0.2, 0.5)
     T = kin.tool_pose(q0)
     T[:3, 3] += [0.05, 0.05, -0.1]
-    active = np.r_[np.zeros(3, bool), np.ones(7, bool)]
+    active = np.r_[np.zeros(3, bool), np.ones(robot.dof - 3, bool)]
     r = solve_ik(kin.tool_pose_jacobian, T, q0, kin.lower, kin.upper, active)
     assert r.success
     assert np.array_equal(r.q[:3], q0[:3])
@@ -54,7 +57,7 @@ def test_ik_reports_failure_for_an_unreachable_pose(robot):
     kin = RobotKinematics(robot)
     T = kin.tool_pose(robot.home_q)
     T[:3, 3] += [3.0, 0.0, 0.0]
-    active = np.r_[np.zeros(3, bool), np.ones(7, bool)]
+    active = np.r_[np.zeros(3, bool), np.ones(robot.dof - 3, bool)]
     r = solve_ik(kin.tool_pose_jacobian, T, robot.home_q, kin.lower, kin.upper, active, restarts=2,
                  rng=np.random.default_rng(0))
     assert not r.success and r.pos_error > 1.5

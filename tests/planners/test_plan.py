@@ -186,7 +186,7 @@ def test_another_robot_is_another_urdf_and_spec(robot, fixture_urdf, tmp_path):
 
 def test_start_of_the_wrong_length_is_an_input_error(robot, fixture_urdf):
     from planners import PlannerInputError
-    with pytest.raises(PlannerInputError, match="start configuration must have 10 values"):
+    with pytest.raises(PlannerInputError, match="start configuration must have 11 values"):
         plan_open_task(robot, fixture_urdf, OpenTask("drawer", DRAWER), start=np.zeros(7))
 
 

@@ -19,7 +19,7 @@ def test_default_robot_urdf_loads_in_pybullet_with_the_spec_joints(robot):
     finally:
         pb.disconnect(cid)
     assert set(robot.joint_names) | set(robot.finger_joints) <= names
-    assert robot.dof == 10 and robot.joint_names[:3] == ("base_x", "base_y", "base_yaw")
+    assert robot.dof == 11 and robot.joint_names[:3] == ("base_x", "base_y", "base_yaw")
 
 
 def test_default_robot_is_cached_and_mesh_paths_are_absolute(robot):
@@ -46,7 +46,7 @@ def test_tool_frame_lies_between_the_fingertips_and_arm_sits_at_045m(robot):
 
 def test_spec_naming_a_missing_joint_is_rejected_with_its_name(robot):
     from dataclasses import replace
-    bad = replace(robot, arm_joints=robot.arm_joints[:6] + ("panda_joint_missing",))
+    bad = replace(robot, arm_joints=robot.arm_joints[:-1] + ("panda_joint_missing",))
     with pytest.raises(RobotDescriptionError, match="panda_joint_missing"):
         RobotKinematics(bad)
 

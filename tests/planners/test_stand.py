@@ -26,7 +26,7 @@ def _setup(robot, urdf):
 
 def test_stand_poses_are_ranked_reach_the_grasp_and_are_seeded(robot, fixture_urdf):
     kin, world, T_paths, s = _setup(robot, fixture_urdf)
-    poses, summary = find_stand_poses(kin, world, T_paths, s, PlannerConfig(), np.random.default_rng(4))
+    poses, summary, _ = find_stand_poses(kin, world, T_paths, s, PlannerConfig(), np.random.default_rng(4))
     assert poses and "stand poses sampled" in summary
     keys = [p.rank_key() for p in poses]
     assert keys == sorted(keys)
@@ -38,5 +38,5 @@ def test_stand_poses_are_ranked_reach_the_grasp_and_are_seeded(robot, fixture_ur
     assert not world.in_collision(best.q_grasp, 0.0, True)
     # In front of the cabinet (it faces world -x from x = 1.25): the base stands at smaller x.
     assert best.base[0] < 1.25 - 0.3
-    again, _ = find_stand_poses(kin, world, T_paths, s, PlannerConfig(), np.random.default_rng(4))
+    again, _, _ = find_stand_poses(kin, world, T_paths, s, PlannerConfig(), np.random.default_rng(4))
     assert np.array_equal(again[0].q_grasp, best.q_grasp)
