@@ -16,7 +16,8 @@ API (see docs/contracts.md, "planners <-> simcheck")::
 
 ``OpenTask`` is partscene's one task type (simcheck certifies the same objects and executes the
 ``PlanResult`` as it is). Differences from docs/contracts.md (stable since the first commit):
-``OpenTask(kind, joint, amount=None, grasp_point=None, grasp_link=None)``; ``plan_open_task(..., start=None, scene_state=None, config=None)``;
+``OpenTask(kind, joint, amount=None, grasp_point=None, grasp_link=None, close=False)`` (``close``: shut the
+part, from ``amount`` open; :func:`close_start_value` gives the value it starts at); ``plan_open_task(..., start=None, scene_state=None, config=None)``;
 ``PlanResult`` also carries ``grasp_link`` (the link whose bar is grasped), ``moving_link``,
 ``T_link_grasp``, ``start_object_q`` and ``method`` ("ik_tracking" or "constrained"). Input that cannot be
 planned on raises ``PlannerInputError`` (file and joint named); every other outcome is a ``PlanResult``.
@@ -29,8 +30,8 @@ import lazy_loader
 __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "robot": ["RobotSpec", "default_robot"],
     "task": ["OpenTask", "PlanResult", "PlanStatus", "Segment", "SEGMENT_NAMES", "parse_task", "parse_tasks",
-             "check_task", "ALL_MOVABLE", "movable_joint_tasks"],
-    "plan": ["plan_open_task"],
+             "check_task", "ALL_MOVABLE", "movable_joint_tasks", "ACTIONS"],
+    "plan": ["plan_open_task", "close_start_value", "closed_value"],
     "config": ["PlannerConfig", "default_amount"],
     "errors": ["PlannerError", "PlannerInputError", "SceneURDFError", "TaskSpecError", "TaskJointError",
                "HandleNotFoundError", "RobotDescriptionError"],

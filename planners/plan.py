@@ -9,6 +9,7 @@ object joint (:mod:`planners.opening`); or "auto": tracking first, constrained p
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import logging
 import math
@@ -30,7 +31,7 @@ from planners.stand import StandPose, find_stand_poses
 from planners.task import OpenTask, PlanResult, PlanStatus, Segment, check_amount, check_task
 from scenes.description import SceneModel
 
-__all__ = ["plan_open_task", "robot_kinematics"]
+__all__ = ["plan_open_task", "robot_kinematics", "closed_value", "close_start_value"]
 
 log = logging.getLogger(__name__)
 
@@ -41,13 +42,42 @@ def robot_kinematics(spec: RobotSpec) -> RobotKinematics:
     return RobotKinematics(spec)
 
 
+def closed_value(lower: float, upper: float) -> float:
+    """The value (m or rad) at which a joint with limits ``[lower, upper]`` is closed: 0, the state a scan saw,
+    moved into the limits (a continuous joint: 0)."""
+    return float(min(max(0.0, lower), upper))
+
+
+#: a close task's joint farther than this (m or rad) from its closed value is already open: it is shut from
+#: where it is
+_ALREADY_OPEN = 1e-3
+
+
+def close_start_value(scene: SceneModel, task: OpenTask, s_now: float, cfg: PlannerConfig) -> float:
+    """The task joint's value (m or rad) when the close task ``task`` starts, the joint being at ``s_now``: where
+    it is when already open, else its closed value plus ``task.amount`` or, without one, the opening an open
+    task would request. Raises :class:`planners.errors.TaskJointError` as an opening would."""
+    j = check_task(task, scene.joints, scene.path)
+    closed = closed_value(j.lower, j.upper)
+    if abs(s_now - closed) > _ALREADY_OPEN:
+        return float(s_now)
+    return closed + _validate(scene, dataclasses.replace(task, close=False), closed, cfg)
+
+
 def _validate(scene: SceneModel, task: OpenTask, s0: float, cfg: PlannerConfig) -> float:
-    """Check the task against the scene (:func:`planners.task.check_task`); return the amount to open from
+    """Check the task against the scene (:func:`planners.task.check_task`); return the amount to move from
     ``s0`` (m or rad; negative: toward the lower limit). Without an amount the joint opens toward the limit
     farther from ``s0`` (ties: the upper one, our scenes' positive-opens convention); a joint without
-    finite limits (``continuous``) opens by ``+cfg.door_max``."""
+    finite limits (``continuous``) opens by ``+cfg.door_max``. A close task moves to :func:`closed_value`."""
     j = check_task(task, scene.joints, scene.path)
     where = f"{scene.path}: joint {task.joint!r}"
+    if task.close:
+        amount = closed_value(j.lower, j.upper) - s0
+        if not abs(amount) > 1e-9:
+            raise TaskJointError(f"{where}: already closed (at {s0:.4g}): nothing to close; start it open "
+                                 f"(simcheck opens it by what an opening would request, or by --from)")
+        check_amount(task, amount, scene.path)
+        return amount
     lower, upper = j.lower, j.upper
     if not math.isfinite(upper) or not math.isfinite(lower):
         lower, upper = s0 - (cfg.door_max / cfg.door_fraction), s0 + (cfg.door_max / cfg.door_fraction)
@@ -85,7 +115,8 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     Args:
         robot: the robot description.
         scene_urdf: path of the scene URDF (the estimate to plan on).
-        task: what to open; ``amount`` is counted from the joint's current value.
+        task: what to open; ``amount`` is counted from the joint's current value. A close task (``task.close``)
+            shuts the part from where ``scene_state`` has it (open it first: :func:`close_start_value`).
         seed: every random choice (stand sampling, IK restarts, OMPL) derives from it.
         start: (dof,) robot configuration in ``robot.joint_names`` order, or None: the robot starts
             ``config.start_backoff`` behind the chosen stand pose with the arm at home.
@@ -104,8 +135,9 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     s0 = float(state.get(task.joint, 0.0))
     amount = _validate(scene, task, s0, cfg)
     kin = robot_kinematics(robot)
+    opens_up = (amount > 0) != task.close          # which way the joint opens: the handle's outward side
     try:
-        handle = find_handle(scene, task, state, cfg, 1.0 if amount > 0 else -1.0, amount)
+        handle = find_handle(scene, task, state, cfg, 1.0 if opens_up else -1.0, amount)
     except HandleStaysPutError as exc:      # a usable estimate that moves the handle nowhere: nothing to pull
         return PlanResult(PlanStatus.OPENING_FAILED, f"{task.kind} {task.joint!r}: {exc}", task, robot.joint_names,
                           amount=amount, start_object_q=s0, moving_link=scene.joints[task.joint].child, seed=seed,
@@ -160,7 +192,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
             continue
         segments, method, note = out
         T_link_grasp = handle.T_link_grasps[stand.grasp_index]
-        return result(PlanStatus.OK, f"{task.kind} {task.joint!r}: planned opening by {amount:.3f} "
+        return result(PlanStatus.OK, f"{task.kind} {task.joint!r}: planned {'closing' if task.close else 'opening'} by {amount:.3f} "
                       f"({'m' if j.type == 'prismatic' else 'rad'}) from stand {np.round(stand.base, 3).tolist()}{note}",
                       segments=tuple(segments), T_world_base_stand=stand.T_world_base, T_link_grasp=T_link_grasp,
                       method=method)

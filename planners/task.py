@@ -1,8 +1,8 @@
 """What is asked (:class:`OpenTask`) and what comes back (:class:`PlanResult` of :class:`Segment`\\ s).
 
 The one task type of partscene: the planner plans it, simcheck certifies it, the command lines and
-scenario files write it as ``"open-drawer:JOINT[=AMOUNT][@X,Y,Z]"`` (:func:`parse_task`), and
-:func:`check_task` checks it against a scene's joints. Engine-free.
+scenario files write it as ``"open-drawer:JOINT[=AMOUNT][@X,Y,Z]"`` or ``"close-door:JOINT[=FROM]"``
+(:func:`parse_task`), and :func:`check_task` checks it against a scene's joints. Engine-free.
 """
 
 from __future__ import annotations
@@ -18,7 +18,8 @@ import numpy as np
 from planners.errors import TaskJointError, TaskSpecError
 
 __all__ = ["OpenTask", "PlanStatus", "Segment", "Expectation", "GRIPPER_COMMANDS", "PlanResult", "SEGMENT_NAMES",
-           "KINDS", "parse_task", "parse_tasks", "check_task", "ALL_MOVABLE", "OPENING_KINDS", "movable_joint_tasks"]
+           "KINDS", "parse_task", "parse_tasks", "check_task", "ALL_MOVABLE", "OPENING_KINDS", "movable_joint_tasks",
+           "ACTIONS"]
 
 #: Segment names in execution order.
 SEGMENT_NAMES = ("approach", "grasp", "open", "release", "retreat")
@@ -27,11 +28,13 @@ SEGMENT_NAMES = ("approach", "grasp", "open", "release", "retreat")
 KINDS = {"drawer": "prismatic", "door": "revolute"}
 #: joint type -> the kind of task that opens it (:func:`movable_joint_tasks`)
 OPENING_KINDS = {"prismatic": "drawer", "revolute": "door", "continuous": "door"}
+#: every task as the command line writes it: open or close a drawer or a door
+ACTIONS = tuple(f"{verb}-{kind}" for verb in ("open", "close") for kind in KINDS)
 
 
 @dataclass(frozen=True)
 class OpenTask:
-    """Open the part moved by ``joint`` (its URDF name).
+    """Open (or, with ``close``, shut) the part moved by ``joint`` (its URDF name).
 
     Attributes:
         kind ("drawer" | "door"): A drawer needs a prismatic joint, a door a revolute one.
@@ -44,9 +47,13 @@ class OpenTask:
         grasp_point ((3,) float or None): Explicit grasp point (world frame, metres, joint closed) on the moving
             part.
         grasp_link (str or None): Explicit handle link (or the moving link itself) to grasp.
+        close (bool): Shut the part instead: it starts open and the robot pushes or pulls it to its closed value
+            (the joint's 0, the state a scan saw, clipped to its limits). ``amount`` is then how far open it
+            starts, counted from closed and signed like an opening (``None``: the amount an opening would
+            request); a part that is already open (a scenario's earlier task) is shut from where it is.
 
     Raises :class:`planners.errors.TaskSpecError` (an input error) naming the task when a field is invalid.
-    ``str(task)`` is its command-line form, ``"open-drawer:JOINT"``.
+    ``str(task)`` is its command-line form, ``"open-drawer:JOINT"`` or ``"close-door:JOINT"``.
     """
 
     kind: str
@@ -54,11 +61,12 @@ class OpenTask:
     amount: float | None = None
     grasp_point: tuple[float, float, float] | None = None
     grasp_link: str | None = None
+    close: bool = False
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
             raise TaskSpecError(f"task {self.kind}:{self.joint}: kind must be one of {sorted(KINDS)} "
-                                f"(written open-drawer:JOINT or open-door:JOINT)")
+                                f"(written {', '.join(ACTIONS[:-1])} or {ACTIONS[-1]}, then :JOINT)")
         if not self.joint:
             raise TaskSpecError(f"task {self.action}: names no joint (write {self.action}:JOINT)")
         if self.amount is not None:
@@ -67,7 +75,8 @@ class OpenTask:
             except (TypeError, ValueError):
                 amount = math.nan
             if not (amount != 0 and math.isfinite(amount)):
-                raise TaskSpecError(f"task {self}: amount must be a non-zero number (m or rad; negative opens "
+                what = "the opening to close from" if self.close else "amount"
+                raise TaskSpecError(f"task {self}: {what} must be a non-zero number (m or rad; negative opens "
                                     f"toward the lower limit), got {self.amount!r}")
             object.__setattr__(self, "amount", amount)
         if self.grasp_point is not None:
@@ -82,8 +91,9 @@ class OpenTask:
 
     @property
     def action(self) -> str:
-        """``"open-drawer"`` or ``"open-door"``: the kind as the command line and certificates write it."""
-        return f"open-{self.kind}"
+        """``"open-drawer"``, ``"open-door"``, ``"close-drawer"`` or ``"close-door"``: the task as the command
+        line and certificates write it."""
+        return f"{'close' if self.close else 'open'}-{self.kind}"
 
     def __str__(self) -> str:
         return f"{self.action}:{self.joint}"
@@ -92,18 +102,20 @@ class OpenTask:
 def parse_task(text: str | OpenTask, amount: float | None = None) -> OpenTask:
     """``"open-KIND:JOINT[=AMOUNT][@X,Y,Z]"`` -> :class:`OpenTask`, e.g. ``"open-drawer:cabinet3_drawer12_joint"``,
     ``"open-door:fridge_door=1.2"`` (rad), ``"open-drawer:d1@1.2,0.3,0.8"`` (explicit grasp point, world
-    frame, m). ``amount`` fills an amount the text does not give; an :class:`OpenTask` is returned as is.
+    frame, m); ``"close-KIND:JOINT[=FROM]"`` shuts it, from ``FROM`` open (``OpenTask.close``). ``amount``
+    fills an amount the text does not give; an :class:`OpenTask` is returned as is.
 
     Raises :class:`planners.errors.TaskSpecError` naming the text and what is wrong.
     """
     if isinstance(text, OpenTask):
         return text
     action, sep, rest = str(text).partition(":")
-    action, kinds = action.strip(), [f"open-{k}" for k in KINDS]
+    action, kinds = action.strip(), list(ACTIONS)
     if not sep:
         raise TaskSpecError(f"task {text!r}: expected KIND:JOINT with KIND in {kinds}")
     if action not in kinds:
         raise TaskSpecError(f"task {text!r}: kind must be one of {kinds}")
+    verb, _, kind = action.partition("-")
     rest, at, point = rest.partition("@")
     grasp_point = None
     if at:
@@ -119,28 +131,35 @@ def parse_task(text: str | OpenTask, amount: float | None = None) -> OpenTask:
             amount = float(value)
         except ValueError:
             raise TaskSpecError(f"task {text!r}: amount {value!r} is not a number") from None
-    return OpenTask(kind=action[len("open-"):], joint=joint.strip(), amount=amount, grasp_point=grasp_point)
+    return OpenTask(kind=kind, joint=joint.strip(), amount=amount, grasp_point=grasp_point, close=verb == "close")
 
 
-def parse_tasks(tasks: Iterable[str | OpenTask], amounts: Iterable[float] | None = None) -> tuple[OpenTask, ...]:
+def parse_tasks(tasks: Iterable[str | OpenTask], amounts: Iterable[float] | None = None,
+                froms: Iterable[float] | None = None) -> tuple[OpenTask, ...]:
     """Parse task strings (or keep :class:`OpenTask`\\ s); ``amounts`` (one for all tasks, or one per task,
-    m or rad) fill the amounts the tasks do not give.
+    m or rad) fill the amounts the opening tasks do not give, ``froms`` (the same way) how far open the
+    closing tasks start.
 
     Raises :class:`planners.errors.TaskSpecError`: no task, a malformed task, or a wrong number of amounts.
     """
     tasks = list(tasks)
     if not tasks:
         raise TaskSpecError("no task given (use --task open-drawer:JOINT or --task open-door:JOINT)")
-    amounts = list(amounts or [])
-    if len(amounts) == 1:
-        amounts = amounts * len(tasks)
-    if amounts and len(amounts) != len(tasks):
-        raise TaskSpecError(f"{len(amounts)} amounts for {len(tasks)} tasks: give one, or one per task")
+    lists = []
+    for values, what in ((amounts, "amounts"), (froms, "--from values")):
+        values = list(values or [])
+        if len(values) == 1:
+            values = values * len(tasks)
+        if values and len(values) != len(tasks):
+            raise TaskSpecError(f"{len(values)} {what} for {len(tasks)} tasks: give one, or one per task")
+        lists.append(values)
+    amounts, froms = lists
     out = []
     for i, t in enumerate(tasks):
         task = parse_task(t)
-        if task.amount is None and amounts:
-            task = OpenTask(task.kind, task.joint, amounts[i], task.grasp_point, task.grasp_link)
+        fill = froms if task.close else amounts
+        if task.amount is None and fill:
+            task = OpenTask(task.kind, task.joint, fill[i], task.grasp_point, task.grasp_link, task.close)
         out.append(task)
     return tuple(out)
 

@@ -65,6 +65,7 @@ def planners_planner(robot_spec, config: PlannerConfig) -> Callable:
         return result
 
     plan.robot_spec = robot_spec
+    plan.config = config
     return plan
 
 
@@ -118,6 +119,25 @@ class Session:
         if self.plan_world is not self.exec_world:
             for name, value in state.items():
                 self.plan_world.reset_scene_joint(name, value)
+
+    def open_for_close(self, task: OpenTask, config: PlannerConfig) -> None:
+        """A close task starts with its part open: unless the executed scene has it open already, set its joint
+        (kinematically, before the task) to where ``planners.close_start_value`` says the task starts, in the
+        executed world (with ``--against``, the same opening along the reference joint's direction)."""
+        if not task.close:
+            return
+        from planners.plan import close_start_value, closed_value
+        from planners.scene_urdf import read_scene_urdf
+
+        est, ref = self.scene_joints[task.joint], self.ref_joints.get(task.joint)
+        if ref is None or ref.type not in ("prismatic", "revolute", "continuous"):
+            return                                          # judged without execution (run_task)
+        now = self.exec_world.scene_joint_state(task.joint)[0]
+        start = close_start_value(read_scene_urdf(self.scene), task, now, config)
+        if abs(start - now) > 1e-9:
+            direction = joint_mapping(est, ref)["direction"] if self.against is not None else 1
+            opening = start - closed_value(est.lower, est.upper)
+            self.exec_world.reset_scene_joint(task.joint, closed_value(ref.lower, ref.upper) + direction * opening)
 
     def run_task(self, task: OpenTask, planner: Callable, seed: int, criteria: CriteriaConfig, out: Path | None,
                  images: bool, video: bool, start=None) -> TaskCertificate:
@@ -189,6 +209,7 @@ class Session:
         rollout = execute_task(w, plan, self.physics, requested_amount=requested,
                                opening_type="revolute" if est.type == "continuous" else est.type.value,
                                opening_axis=sign * np.asarray(est.axis_world, dtype=float),
+                               closing=task.close, joint_range=float(ref.upper - ref.lower),
                                frame_callback=camera.snap if camera else None,
                                sample_callback=on_sample if given or camera is not None and video else None)
         self.last_rollout = rollout
@@ -274,6 +295,7 @@ def _run_task(session: Session, task: OpenTask, planner: Callable, seed: int, cr
     (the executed scene's joints, the robot's configuration: see :class:`TaskCertificate`) and, when the
     worlds were loaded for it, their loading time (``timings["load_worlds"]``, s)."""
     log.info("certifying %s on %s%s", task, session.scene, f" against {session.against}" if session.against else "")
+    session.open_for_close(task, getattr(planner, "config", PlannerConfig()))
     state = session.exec_state()
     q_now = session.exec_world.robot_q()
     cert = session.run_task(task, planner, seed, criteria, out_dir, images, video, start=start)
@@ -291,7 +313,7 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
             amounts=None, criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
             planner_config: PlannerConfig = PlannerConfig(), images: bool = True, video: bool = False,
             gui: bool = False, carry_state: bool = False, robust: int | None = None, min_success: float = 0.9,
-            replay_sample: int | None = None, save_plan: bool | str = False, files=None) -> Certificate:
+            replay_sample: int | None = None, save_plan: bool | str = False, files=None, froms=None) -> Certificate:
     """Certify each task on ``scene``; returns the :class:`Certificate` (written to ``out`` if given).
 
     Args:
@@ -306,7 +328,10 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         robot: a ``planners.RobotSpec`` (or :class:`SimRobot` together with ``planner``); default robot if None.
         planner: ``planner(scene, task, seed, start, scene_state) -> planners.PlanResult``; default planners'.
         planner_config: the default planner's parameters (unused with ``planner``).
-        amounts: one amount for all tasks or one per task (m or rad), for tasks without one.
+        amounts: one amount for all tasks or one per task (m or rad), for opening tasks without one.
+        froms: the same for how far open the close tasks (``close-drawer``, ``close-door``) start (``--from``;
+            default: what an opening would request). A close task's part is set open before the task
+            (:meth:`Session.open_for_close`) unless it is open already.
         carry_state: run the tasks one after the other in one world, its state carried from task to task
             (a scenario); by default each task is judged in freshly loaded worlds.
         robust: execute each task's plan in this many worlds sampled from the scan's uncertainty, physics
@@ -338,6 +363,8 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
             return cert
         cert = dataclasses.replace(cert, untested=untested)
         return dataclasses.replace(cert, path=cert.write(cert.path.parent)) if cert.path is not None else cert
+    if froms:
+        tasks = parse_tasks(tasks, None, froms)
     if robust is not None or replay_sample is not None:
         from simcheck.robust import certify_robustly
         return certify_robustly(functools.partial(certify, save_plan=save_plan, files=files), scene, tasks,

@@ -1,7 +1,7 @@
-"""``simcheck``: certify opening tasks in physics.
+"""``simcheck``: certify opening (and closing) tasks in physics.
 
-    simcheck certify SCENE.urdf (--task open-drawer:JOINT --task open-door:JOINT ... | --all-movable)
-                     [--amount A ...] [--against REFERENCE.urdf] [--out DIR] [--seed S] [--gui] [--video]
+    simcheck certify SCENE.urdf (--task open-drawer:JOINT --task close-door:JOINT ... | --all-movable)
+                     [--amount A ...] [--from OPENING ...] [--against REFERENCE.urdf] [--out DIR] [--seed S] [--gui] [--video]
                      [--robot SPEC] [--robust N [--min-success P] [--replay-sample I]] [--json]
                      [--save-plan]
     simcheck certify-plan SCENE.urdf PLAN.json [--against REFERENCE.urdf] [--out DIR] [--robust N ...] [--json]
@@ -55,12 +55,15 @@ def _parser() -> argparse.ArgumentParser:
     c = sub.add_parser("certify", help="certify tasks on a scene URDF", parents=[verbosity])
     c.add_argument("scene", help="scene URDF to plan on (an estimate or a truth)")
     c.add_argument("--task", action="append", default=[], metavar="KIND:JOINT",
-                   help="open-drawer:JOINT or open-door:JOINT (repeatable)")
+                   help="open-drawer:JOINT, open-door:JOINT, close-drawer:JOINT or close-door:JOINT (repeatable)")
     c.add_argument("--all-movable", action="store_true",
                    help="certify every drawer (prismatic joint) and door (revolute joint) of the scene; "
                         "joints without an opening range are listed as untested")
     c.add_argument("--amount", action="append", type=float, default=[],
                    help="opening, m or rad: one for all tasks or one per task (default: 90%% of the range, doors <= 85 deg)")
+    c.add_argument("--from", dest="froms", action="append", type=float, default=[], metavar="OPENING",
+                   help="close tasks: how far open the part starts, m or rad (one for all or one per task; "
+                        "default: what an opening would request)")
     c.add_argument("--against", default=None, help="reference URDF to execute on (joints matched by name)")
     c.add_argument("--robot", default="default", help="'default' or a robot spec YAML/JSON file")
     c.add_argument("--save-plan", action="store_true",
@@ -114,13 +117,13 @@ def main(argv: list[str] | None = None) -> int:
             robot = load_robot_spec(args.robot)
             spec_file = args.robot if args.robot not in (None, "", "default") else None
             inputs = {"scene": args.scene, "against": args.against, "robot_spec": spec_file}
-            settings = {"tasks": args.task, "all_movable": args.all_movable, "amounts": args.amount,
+            settings = {"tasks": args.task, "all_movable": args.all_movable, "amounts": args.amount, "froms": args.froms,
                         "seed": args.seed or 0, "robust": args.robust, "min_success": args.min_success,
                         "replay_sample": args.replay_sample, "save_plan": args.save_plan, **outputs}
             with output_folder(args.out, "simcheck certify", inputs=inputs, settings=settings,
                                overwrite=args.overwrite, verdict="certificate.json") as staging:
                 cert = certify(args.scene, ALL_MOVABLE if args.all_movable else args.task, against=args.against,
-                               amounts=args.amount or None, seed=args.seed or 0, out=staging, robot=robot,
+                               amounts=args.amount or None, froms=args.froms or None, seed=args.seed or 0, out=staging, robot=robot,
                                images=not args.no_images, video=args.video, gui=args.gui, robust=args.robust,
                                min_success=args.min_success, replay_sample=args.replay_sample,
                                save_plan=(args.robot if args.robot == "default" else str(Path(args.robot).resolve()))

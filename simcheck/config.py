@@ -12,6 +12,7 @@ Two frozen dataclasses:
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 
 __all__ = ["PhysicsConfig", "CriteriaConfig", "DEFAULT_PHYSICS", "DEFAULT_CRITERIA"]
@@ -159,10 +160,15 @@ class CriteriaConfig:
         rest_contact_slack: links in contact at rest (``PhysicsConfig.rest_contact_gap``) may interpenetrate
             at most this much deeper than they did at rest while the part moves, metres (a door whose
             corner sweeps into the sibling it touched has passed through it: physically, it is blocked).
+        closed_range_fraction, closed_gap_prismatic, closed_gap_revolute: a close task's part counts as
+            closed when it ends within ``closed_range_fraction`` of its joint's range of its closed value,
+            or within ``closed_gap_prismatic`` m / ``closed_gap_revolute`` rad if that is larger (the
+            issue's "2% of the range, 1 cm / 2 deg, whichever is larger"). A close task is judged by this
+            instead of the opened fraction and overshoot.
     """
 
     name: str = "partscene-default"
-    version: str = "2.0"
+    version: str = "2.1"
     opened_fraction: float = 0.9
     opened_overshoot: float = 0.1
     settled_linear_speed: float = 0.05
@@ -178,6 +184,9 @@ class CriteriaConfig:
     acceleration_window: float = 0.1
     articulation_tolerance: float = 0.01
     rest_contact_slack: float = 0.003
+    closed_range_fraction: float = 0.02
+    closed_gap_prismatic: float = 0.01
+    closed_gap_revolute: float = math.radians(2.0)
 
     def replace(self, **changes) -> "CriteriaConfig":
         """A copy with ``changes`` applied."""

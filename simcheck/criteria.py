@@ -15,7 +15,8 @@ import numpy as np
 from simcheck.config import DEFAULT_CRITERIA, CriteriaConfig
 from simcheck.rollout import Rollout
 
-__all__ = ["CriterionResult", "at_release", "opened_amount", "opened_fraction", "opened_overshoot", "handle_path_deviation", "settled_linear_speed",
+__all__ = ["CriterionResult", "at_release", "opened_amount", "opened_fraction", "opened_overshoot", "closed_gap", "closed_tolerance",
+           "handle_path_deviation", "settled_linear_speed",
            "settled_angular_speed", "unexpected_contact_force", "unexpected_contact_depth", "rest_contact_penetration", "grasp_held", "grasp_force",
            "interaction_force",
            "robot_joint_limits", "plan_found", "plan_collision_free", "rollout_criteria", "FLOOR"]
@@ -120,6 +121,29 @@ def opened_overshoot(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> Criter
                   "opening past the request at the end, as a fraction of the request",
                   f"{r.joint} ended {over:.0%} past the requested {r.requested_amount:.3f} (at most "
                   f"{c.opened_overshoot:.0%}; {how}): the part moved farther than planned", how)
+
+
+def closed_tolerance(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> float:
+    """How near its closed value (m or rad) a closed part must end: ``c.closed_range_fraction`` of the joint's
+    range, or ``c.closed_gap_prismatic`` / ``c.closed_gap_revolute`` if larger (the range unknown: those)."""
+    floor = c.closed_gap_prismatic if r.opening_type == "prismatic" else c.closed_gap_revolute
+    span = r.joint_range if math.isfinite(r.joint_range) else 0.0
+    return max(c.closed_range_fraction * span, floor)
+
+
+def closed_gap(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """A close task's gap at the end: how far (m or rad) the part is from its closed value, i.e. the opening
+    it started at (``r.requested_amount``) minus how far it moved the way it closes (:func:`opened_amount`,
+    along ``r.opening_axis``); at most :func:`closed_tolerance`."""
+    moved, how = opened_amount(r)
+    gap = abs(r.requested_amount - moved)
+    tol = closed_tolerance(r, c)
+    unit = "m" if r.opening_type == "prismatic" else "rad"
+    return _judge("closed_gap", gap, tol, "<=", unit,
+                  "distance of the part from its closed value at the end (the opening it started at minus "
+                  "how far it was shut)",
+                  f"{r.joint} ended {gap:.3f} {unit} from closed (it started {r.requested_amount:.3f} open and "
+                  f"was shut by {moved:.3f}; at most {tol:.3f}; {how})", how)
 
 
 def handle_path_deviation(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
@@ -322,8 +346,10 @@ def plan_collision_free(max_depth: float, detail: str, c: CriteriaConfig = DEFAU
 
 
 def rollout_criteria(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> tuple[CriterionResult, ...]:
-    """Every rollout criterion, in the order a failure reason lists them (most telling first)."""
-    return (grasp_held(r, c), grasp_force(r, c), opened_fraction(r, c), opened_overshoot(r, c),
+    """Every rollout criterion, in the order a failure reason lists them (most telling first). A close task
+    (``r.closing``) is judged by :func:`closed_gap` instead of the opened fraction and overshoot."""
+    reached = (closed_gap(r, c),) if r.closing else (opened_fraction(r, c), opened_overshoot(r, c))
+    return (grasp_held(r, c), grasp_force(r, c), *reached,
             handle_path_deviation(r, c), unexpected_contact_force(r, c), unexpected_contact_depth(r, c),
             rest_contact_penetration(r, c), interaction_force(r, c), settled_linear_speed(r, c),
             settled_angular_speed(r, c), robot_joint_limits(r, c))

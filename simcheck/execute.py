@@ -200,7 +200,8 @@ def _step(world: World, rec: _Recorder, n: int, on_step=None) -> None:
 def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT_PHYSICS, *,
                  requested_amount: float | None = None, reset_robot: bool = True,
                  frame_callback=None, sample_callback=None, opening_type: str = "",
-                 opening_axis: np.ndarray | None = None) -> Rollout:
+                 opening_axis: np.ndarray | None = None, closing: bool = False,
+                 joint_range: float = float("nan")) -> Rollout:
     """Execute ``plan`` in ``world`` with physics and return the recorded :class:`Rollout`.
 
     Args:
@@ -210,6 +211,9 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
         requested_amount: the opening asked for, m or rad (default ``plan.amount``).
         opening_type, opening_axis: the planned joint's type ("prismatic"/"revolute") and (3,) world axis
             toward which it opens: the opening is measured along it (see ``Rollout.opening_axis``).
+        closing, joint_range: a close task (the plan shuts the part; ``requested_amount`` is how far it is
+            open, ``opening_axis`` points the way it closes) and the executed joint's range, recorded for
+            the criteria (``Rollout.closing``, ``Rollout.joint_range``).
         reset_robot: place the robot at the plan's first configuration first (the robot's start state;
             the scene is left as it is, so a scenario carries the world state from task to task).
         frame_callback: called as ``frame_callback(label)`` at key frames ("start", "grasped",
@@ -330,6 +334,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
         robot_q_target=np.asarray(rows["robot_q_target"]), finger_links=tuple(robot.finger_links),
         opening_axis=None if opening_axis is None else np.asarray(opening_axis, dtype=float).reshape(3),
         holding_force=float(rec.holding_force), opening_segment=opening, release_segment=plan.release_segment,
+        closing=bool(closing), joint_range=float(joint_range),
         finger_q=np.asarray(rows["finger_q"]).reshape(len(rows["t"]), -1),
         finger_contacts=np.asarray(rows["finger_contacts"], dtype=int),
         contact_sample=np.asarray([c[0] for c in cr], dtype=int),

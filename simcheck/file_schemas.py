@@ -11,6 +11,8 @@ from __future__ import annotations
 import difflib
 from pathlib import Path
 
+from planners.task import ACTIONS
+
 __all__ = ["SCENARIO_SCHEMA", "ROBOT_SPEC_SCHEMA", "check_document", "schema_problems", "unknown_key_hint"]
 
 _NAMES = {"type": "array", "items": {"type": "string"}, "description": "a list of names"}
@@ -33,14 +35,16 @@ SCENARIO_SCHEMA = {
                 "type": ["string", "object"], "additionalProperties": False,
                 "description": "'open-drawer:JOINT' or a mapping such as {kind: open-door, joint: JOINT}",
                 "properties": {
-                    "kind": {"type": "string", "enum": ["open-drawer", "open-door"],
-                             "description": "'open-drawer' or 'open-door'"},
+                    "kind": {"type": "string", "enum": list(ACTIONS),
+                             "description": "'open-drawer', 'open-door', 'close-drawer' or 'close-door'"},
                     "joint": {"type": "string", "description": "a joint name"},
-                    "open-drawer": {"type": "string", "description": "a joint name"},
-                    "open-door": {"type": "string", "description": "a joint name"},
+                    **{action: {"type": "string", "description": "a joint name"} for action in ACTIONS},
                     "amount": {"type": "number", "not": {"const": 0},
                                "description": "a non-zero opening, m (drawer) or rad (door); negative "
                                               "opens toward the lower limit"},
+                    "from": {"type": "number", "not": {"const": 0},
+                             "description": "for a close task, how far open the part starts: a non-zero "
+                                            "opening, m (drawer) or rad (door)"},
                     "grasp_point": _POINT,
                     "grasp_link": {"type": "string", "description": "a link name"},
                     "plan": {"type": "string", "description": "the path of a plan file (partscene.plan/1)"},

@@ -24,7 +24,7 @@ ROLLOUT_FORMAT = "partscene.rollout/1"
 _META = ("joint", "moving_link", "handle_link", "robot_joint_names", "segment_names", "gripper_links",
          "requested_amount", "object_q0", "grasp_note", "time_step", "holding_force", "opening_type",
          "finger_links", "opening_segment", "release_segment", "rest_contact_links", "rest_contact_worst",
-         "robot_joint_units")
+         "robot_joint_units", "closing", "joint_range")
 
 
 @dataclass(frozen=True)
@@ -80,6 +80,11 @@ class Rollout:
             collision, :attr:`simcheck.config.PhysicsConfig.rest_contact_gap`).
         rest_contact_excess: (n,) how much deeper than at rest the moving part interpenetrated any of them
             since the previous sample, m (>= 0); rest_contact_worst: the link of the largest excess ("").
+        closing: the task shuts the part (a close task): ``requested_amount`` is then how far it was open,
+            measured along ``opening_axis`` pointing the way it closes, so the gap left is the request
+            minus what it moved.
+        joint_range: the executed joint's range (upper - lower, m or rad; NaN: unknown), which sets how
+            near its closed value a closed part must be.
     """
 
     joint: str
@@ -131,6 +136,8 @@ class Rollout:
     rest_contact_excess: np.ndarray | None = None
     rest_contact_worst: str = ""
     robot_joint_units: tuple[str, ...] = ()
+    closing: bool = False
+    joint_range: float = float("nan")
 
     def __post_init__(self) -> None:
         n = len(self.t)

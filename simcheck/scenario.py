@@ -10,6 +10,8 @@ state carried from task to task (drawer A stays open while door B is opened).
     tasks:
       - open-drawer:cabinet3_drawer12_joint
       - {kind: open-door, joint: cabinet5_door14_joint, amount: 1.2}   # also grasp_point, grasp_link
+      - close-drawer:cabinet3_drawer12_joint       # shut from where the first task left it
+      - {kind: close-door, joint: cabinet5_door16_joint, from: 0.8}      # set 0.8 rad open first
       - plan: drawer.plan.json     # a given plan (partscene.plan/1, one expectation), replayed as it is;
                                    # its first waypoint must be where the previous task left the robot;
                                    # executed with the scenario's robot (the plan's 'robot' is not used)
@@ -22,7 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from planners.task import OpenTask, parse_task
+from planners.task import ACTIONS, OpenTask, parse_task
 from simcheck.errors import ScenarioError
 from simcheck.file_schemas import SCENARIO_SCHEMA, check_document
 
@@ -52,13 +54,18 @@ def _task(entry, path: Path, i: int) -> OpenTask | Path:
     if isinstance(entry, dict):
         if "kind" in entry and "joint" in entry:
             kind, joint = entry["kind"], entry["joint"]
-        elif len([k for k in entry if k.startswith("open-")]) == 1:
-            kind = next(k for k in entry if k.startswith("open-"))
+        elif len([k for k in entry if k in ACTIONS]) == 1:
+            kind = next(k for k in entry if k in ACTIONS)
             joint = entry[kind]
         else:
             raise ScenarioError(f"{path}: tasks[{i}] needs 'kind' and 'joint' (or 'open-drawer: JOINT'), got {entry}")
         task = parse_task(f"{kind}:{joint}")
-        return OpenTask(task.kind, task.joint, entry.get("amount"), entry.get("grasp_point"), entry.get("grasp_link"))
+        wrong = "amount" if task.close else "from"
+        if wrong in entry:
+            raise ScenarioError(f"{path}: tasks[{i}] ({task}): '{wrong}' is for {'opening' if task.close else 'close'} "
+                                f"tasks; {'a close task starts open by from' if task.close else 'an opening goes by amount'}")
+        return OpenTask(task.kind, task.joint, entry.get("from" if task.close else "amount"), entry.get("grasp_point"),
+                        entry.get("grasp_link"), task.close)
     raise ScenarioError(f"{path}: tasks[{i}] must be a string or a mapping, got {type(entry).__name__}")
 
 

@@ -82,3 +82,32 @@ def test_a_hand_made_plan_is_a_plan_result():
         Segment("grasp", q, [0.0], np.repeat(np.eye(4)[None], 3, axis=0), "open")
     with pytest.raises(ValueError, match="gripper must be 'open' or 'closed'"):
         Segment("grasp", q, np.zeros(3), np.repeat(np.eye(4)[None], 3, axis=0), "shut")
+
+
+def test_close_tasks_parse_with_the_opening_they_start_from():
+    task = parse_task(f"close-drawer:{DRAWER}=0.2")
+    assert task == OpenTask("drawer", DRAWER, 0.2, close=True)
+    assert str(task) == f"close-drawer:{DRAWER}" and task.action == "close-drawer"
+    assert parse_task("close-door:d").amount is None and parse_task("close-door:d").close
+    tasks = parse_tasks(["open-drawer:a", "close-door:b", "close-drawer:c=0.1"], [0.3], froms=[0.5])
+    assert [(t.action, t.amount) for t in tasks] == [("open-drawer", 0.3), ("close-door", 0.5), ("close-drawer", 0.1)]
+    with pytest.raises(TaskSpecError, match="the opening to close from must be a non-zero number"):
+        parse_task("close-door:d=0")
+    with pytest.raises(TaskSpecError, match="2 --from values for 3 tasks"):
+        parse_tasks(["close-door:a", "close-door:b", "open-door:c"], froms=[0.1, 0.2])
+
+
+def test_a_close_task_starts_where_an_opening_would_end_and_moves_to_closed():
+    from planners.plan import _validate, close_start_value, closed_value
+
+    scene, cfg = read_scene_urdf(FIXTURE), PlannerConfig()
+    j = scene.joints[DOOR]
+    close = OpenTask("door", DOOR, close=True)
+    start = close_start_value(scene, close, 0.0, cfg)
+    assert start == pytest.approx(default_amount("door", j.lower, j.upper, cfg))
+    assert close_start_value(scene, OpenTask("door", DOOR, 0.5, close=True), 0.0, cfg) == pytest.approx(0.5)
+    assert close_start_value(scene, close, 0.3, cfg) == pytest.approx(0.3)      # already open: shut from there
+    assert _validate(scene, close, start, cfg) == pytest.approx(closed_value(j.lower, j.upper) - start)
+    with pytest.raises(TaskJointError, match="already closed"):
+        _validate(scene, close, 0.0, cfg)
+    assert closed_value(-1.57, 0.0) == 0.0 and closed_value(0.2, 1.5) == 0.2
