@@ -44,6 +44,9 @@ class PlannerConfig:
     IK
         ik_pos_tol, ik_rot_tol: convergence (m, rad); ik_restarts: random restarts per pose;
         base_weight: relative motion weight of base joints during whole-body tracking (< 1 favours the arm).
+        lift_weight: relative motion weight of a torso lift (the prismatic arm joints before the shoulder,
+            metres) in every IK: < 1 moves the arm first, so the lift rises or sinks only where the arm alone
+            falls short (a metre of lift is a large tool motion next to a radian of arm joint).
     Motion
         approach_time: OMPL time limit for the approach; approach_planner: OMPL geometric planner name;
         approach_check_step: OMPL's edge-checking step (Euclidean norm in joint space, m and rad mixed);
@@ -80,6 +83,7 @@ class PlannerConfig:
     ik_rot_tol: float = 1e-2
     ik_restarts: int = 4
     base_weight: float = 0.3
+    lift_weight: float = 0.1
     approach_time: float = 3.0
     approach_planner: str = "RRTConnect"
     approach_check_step: float = 0.03

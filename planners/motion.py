@@ -16,7 +16,16 @@ import numpy as np
 from planners.config import PlannerConfig
 from planners.ik import solve_ik
 
-__all__ = ["densify", "first_invalid", "TrackResult", "track_poses"]
+__all__ = ["densify", "first_invalid", "TrackResult", "track_poses", "ik_weights"]
+
+
+def ik_weights(kin, cfg: PlannerConfig, base_weight: float = 1.0) -> np.ndarray:
+    """``(dof,)`` IK motion weights: ``base_weight`` for the base joints, ``cfg.lift_weight`` for a torso lift
+    (``kin.lift_cols``), 1 for the other arm joints."""
+    w = np.ones(kin.spec.dof)
+    w[:len(kin.spec.base_joints)] = base_weight
+    w[kin.lift_cols] = cfg.lift_weight
+    return w
 
 
 def densify(q: np.ndarray, s: np.ndarray, max_step: float) -> tuple[np.ndarray, np.ndarray]:
@@ -77,8 +86,10 @@ def track_poses(kin, world, T_targets: np.ndarray, s_values: np.ndarray, q_start
     arm[3:] = True
     whole = np.ones(dof, bool)
     variants, seen = [], set()
-    for act, w in ((np.asarray(active, bool), weights), (arm, None), (whole, weights), (whole, None)):
-        key = (act.tobytes(), None if w is None else np.asarray(w).tobytes())
+    even = ik_weights(kin, cfg)
+    weights = even if weights is None else weights
+    for act, w in ((np.asarray(active, bool), weights), (arm, even), (whole, weights), (whole, even)):
+        key = (act.tobytes(), np.asarray(w).tobytes())
         if key not in seen:
             seen.add(key)
             variants.append((act, w, 0))

@@ -19,7 +19,7 @@ import numpy as np
 
 from planners.config import PlannerConfig
 from planners.ik import pose_error, rotvec_from_matrix, solve_ik
-from planners.motion import TrackResult, densify
+from planners.motion import TrackResult, densify, ik_weights
 from planners.ompl_adapter import plan_constrained_path
 
 __all__ = ["plan_opening_constrained"]
@@ -50,11 +50,11 @@ def plan_opening_constrained(kin, world, T_link_grasp: np.ndarray, s0: float, s1
 
     # Start and goal must lie on the manifold (OMPL rejects states off it): refine the start tightly.
     start_ik = solve_ik(kin.tool_pose_jacobian, T_grasp(s0), q_start, world.robot.lower, world.robot.upper,
-                        None, None, pos_tol=2e-5, rot_tol=2e-4, max_iter=50)
+                        None, ik_weights(kin, cfg), pos_tol=2e-5, rot_tol=2e-4, max_iter=50)
     if start_ik.success and not world.in_collision(start_ik.q, s0, True):
         q_start = start_ik.q
     goal_ik = solve_ik(kin.tool_pose_jacobian, T_grasp(s1), q_start, world.robot.lower, world.robot.upper,
-                       None, None, pos_tol=2e-5, rot_tol=2e-4,
+                       None, ik_weights(kin, cfg), pos_tol=2e-5, rot_tol=2e-4,
                        restarts=cfg.ik_restarts, rng=rng, restart_span=np.r_[np.full(3, 0.6), np.full(dof - 3, 1.0)],
                        accept=lambda q: not world.in_collision(q, s1, True))
     if not goal_ik.success:

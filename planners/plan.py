@@ -21,7 +21,7 @@ from planners.config import PlannerConfig, default_amount
 from planners.errors import HandleStaysPutError, PlannerInputError, TaskJointError
 from planners.handle import find_handle
 from planners.ik import solve_ik
-from planners.motion import TrackResult, densify, first_invalid, track_poses
+from planners.motion import TrackResult, densify, first_invalid, ik_weights, track_poses
 from planners.opening import plan_opening_constrained
 from planners.ompl_adapter import plan_joint_path
 from planners.pin_world import LIMIT_TOLERANCE, PlanningWorld, RobotKinematics
@@ -179,8 +179,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     arm = np.zeros(robot.dof, bool)
     arm[3:] = True
     whole = np.ones(robot.dof, bool)
-    weights = np.ones(robot.dof)
-    weights[:3] = cfg.base_weight
+    weights = ik_weights(kin, cfg, cfg.base_weight)
     failures = []
     for rank, stand in enumerate(stands[:cfg.stand_tries]):
         out = _plan_from_stand(kin, world, task, stand, T_paths[stand.grasp_index], s_path, handle, cfg, rng,
@@ -211,7 +210,7 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
     # Pre-grasp: backed off along the approach axis, gripper open, no contact allowed.
     t = time.perf_counter()
     T_pre = _translate_tool(T_path[0], -cfg.pregrasp_distance)
-    r = solve_ik(kin.tool_pose_jacobian, T_pre, q_grasp, lower, upper, arm, None, pos_tol=cfg.ik_pos_tol,
+    r = solve_ik(kin.tool_pose_jacobian, T_pre, q_grasp, lower, upper, arm, ik_weights(kin, cfg), pos_tol=cfg.ik_pos_tol,
                  rot_tol=cfg.ik_rot_tol, restarts=cfg.ik_restarts, rng=rng, restart_span=np.full(spec.dof, 0.4),
                  accept=lambda q: not world.in_collision(q, s0, False))
     if not r.success:

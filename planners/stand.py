@@ -28,6 +28,7 @@ import numpy as np
 
 from planners.config import PlannerConfig
 from planners.ik import solve_ik
+from planners.motion import ik_weights
 
 __all__ = ["StandPose", "StandSearch", "find_stand_poses"]
 
@@ -111,6 +112,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
     arm = np.zeros(spec.dof, bool)
     arm[3:] = True
     strained = arm & ~kin.prismatic   # the columns of the reach margin
+    weights = ik_weights(kin, cfg)
     m = len(s_samples)
     idx = np.unique(np.linspace(0, m - 1, max(2, cfg.stand_path_samples)).round().astype(int))
     kept: list[StandPose] = []
@@ -133,7 +135,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
         best, successes = None, 0
         for gi, T_path in enumerate(T_paths):
             # Full restarts for the two preferred grasps, one for the fallbacks (they rarely decide).
-            r = solve_ik(kin.tool_pose_jacobian, T_path[0], q_seed, lower, upper, arm, None,
+            r = solve_ik(kin.tool_pose_jacobian, T_path[0], q_seed, lower, upper, arm, weights,
                          pos_tol=cfg.ik_pos_tol, rot_tol=cfg.ik_rot_tol,
                          restarts=cfg.ik_restarts if gi < 2 else 1, rng=rng,
                          accept=lambda q: not world.in_collision(q, s_samples[0], True))
@@ -143,7 +145,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
             successes += 1
             q, reached, margin = r.q, 1, _margin(r.q, lower, upper, strained)
             for k in idx[1:]:
-                rk = solve_ik(kin.tool_pose_jacobian, T_path[k], q, lower, upper, arm, None,
+                rk = solve_ik(kin.tool_pose_jacobian, T_path[k], q, lower, upper, arm, weights,
                               pos_tol=cfg.track_pos_tol, rot_tol=cfg.track_rot_tol, restarts=1, rng=rng,
                               restart_span=np.full(spec.dof, 0.3),
                               accept=lambda q, s=s_samples[k]: not world.in_collision(q, s, True))

@@ -366,6 +366,10 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
     if froms:
         tasks = parse_tasks(tasks, None, froms)
     if robust is not None or replay_sample is not None:
+        closing = [str(t) for t in parse_tasks(tasks) if t.close]
+        if closing:
+            raise TaskSpecError(f"--robust certifies opening tasks only; {', '.join(closing)} would start closed "
+                                f"in the sampled worlds: certify close tasks without --robust")
         from simcheck.robust import certify_robustly
         return certify_robustly(functools.partial(certify, save_plan=save_plan, files=files), scene, tasks,
                                 robust=robust, min_success=min_success,

@@ -52,7 +52,7 @@ def test_broken_urdf_exits_2_in_a_subprocess(tmp_path):
 @pytest.mark.parametrize("argv, message", [
     (["certify", "missing.urdf", "--task", f"open-drawer:{DRAWER}"], "missing.urdf does not exist"),
     (["certify", str(CAB)], "no task given"),
-    (["certify", str(CAB), "--task", f"close-drawer:{DRAWER}"], "kind must be one of"),
+    (["certify", str(CAB), "--task", f"shut-drawer:{DRAWER}"], "kind must be one of"),
     (["certify", str(CAB), "--task", f"open-drawer:{DRAWER}", "--amount", "0.1", "--amount", "0.2"], "2 amounts for 1 tasks"),
     (["certify", str(CAB), "--task", f"open-drawer:{DRAWER}", "--robot", "nope.yaml"], "robot spec nope.yaml does not exist"),
     (["certify", str(CAB), "--task", f"open-drawer:{DRAWER}", "--gui"], "needs a display"),

@@ -62,3 +62,11 @@ def test_a_scenario_opens_then_closes_from_where_the_opening_left_the_door(tmp_p
     assert code == 0, [t["reason"] for t in tasks]
     assert tasks[1]["start_state"][DOOR] == pytest.approx(1.0, abs=0.1)       # where the opening left it
     assert tasks[2]["start_state"][DRAWER] == pytest.approx(0.2)
+
+
+def test_robust_certification_of_a_close_task_is_refused_by_name(tmp_path):
+    from planners.errors import TaskSpecError
+    from simcheck.certification import certify
+
+    with pytest.raises(TaskSpecError, match=f"close-door:{DOOR} would start closed"):
+        certify(CAB, [f"close-door:{DOOR}"], robust=4, images=False)

@@ -28,7 +28,7 @@ GOOD_SCENARIO = "scene: scene.urdf\nagainst: truth.urdf\nseed: 2\ntasks:\n  - op
     ("scene: s.urdf\ntasks: [{kind: open-door, joint: h, amount: 0}]\n",
      r"bad.yaml: field 'tasks\[0\].amount' must be a non-zero opening, m \(drawer\) or rad \(door\); negative opens toward the lower limit, got 0"),
     ("scene: s.urdf\ntasks: [{kind: open-window, joint: h}]\n",
-     r"field 'tasks\[0\].kind' must be 'open-drawer' or 'open-door', got 'open-window'"),
+     r"field 'tasks\[0\].kind' must be 'open-drawer', 'open-door', 'close-drawer' or 'close-door', got 'open-window'"),
     ("scene: s.urdf\ntasks: []\n", r"bad.yaml: field 'tasks' must be a non-empty list, got \[\]"),
     ("scene: s.urdf\nseed: one\ntasks: [open-drawer:d]\n", r"field 'seed' must be an integer, got 'one'"),
     ("tasks: [open-drawer:d]\n", r"bad.yaml: field 'scene' is missing"),
