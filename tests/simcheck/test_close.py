@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import simcheck.estimate_faults as wrong
+from planners.config import PlannerConfig, default_amount
 from simcheck.cli import main
 from simcheck.criteria import closed_gap, rollout_criteria
 from simcheck_fixture_plans import DATA
@@ -14,6 +15,7 @@ from simcheck_rollout_factory import good_rollout, with_
 
 CAB = DATA / "panda_cabinet.urdf"
 DOOR, DRAWER = "cabinet1_door14_joint", "cabinet1_drawer12_joint"
+CFG = PlannerConfig()
 
 
 def test_closed_gap_is_the_opening_left_and_replaces_the_opened_criteria():
@@ -29,7 +31,8 @@ def test_closed_gap_is_the_opening_left_and_replaces_the_opened_criteria():
     assert closed_gap(door).threshold == pytest.approx(0.038)
 
 
-@pytest.mark.parametrize("task, start", [(f"close-drawer:{DRAWER}", 0.315), (f"close-door:{DOOR}", np.pi / 2)])
+@pytest.mark.parametrize("task, start", [(f"close-drawer:{DRAWER}", default_amount("drawer", 0.0, 0.35, CFG)),
+                                         (f"close-door:{DOOR}", default_amount("door", 0.0, 1.9, CFG))])
 def test_a_close_task_starts_open_and_is_certified_when_shut(task, start, tmp_path):
     assert main(["certify", str(CAB), "--task", task, "--out", str(tmp_path / "o"), "--no-images"]) == 0
     t = json.loads((tmp_path / "o" / "certificate.json").read_text())["tasks"][0]
