@@ -243,14 +243,15 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
     timings["open"] = time.perf_counter() - t
     if not o.success:
         return PlanStatus.OPENING_FAILED, f"opening motion failed at {o.s[-1] if len(o.s) else s0:.3f}: {o.reason}"
-    # Retreat: back off along the approach axis with the gripper open, at the final joint value.
+    # Retreat: back off along the approach axis with the gripper open, at the final joint value; the arm first
+    # (the base stays where the opening left it, clear of the opened part; whole-body steps only where needed).
     t = time.perf_counter()
     T_end = kin.tool_pose(o.q[-1])
     dist = cfg.retreat_distance
     while True:
         n = max(2, int(math.ceil(dist / 0.01)) + 1)
         T_back = np.array([_translate_tool(T_end, -dist * u) for u in np.linspace(0, 1, n)])
-        rt = track_poses(kin, world, T_back, np.full(n, s1), o.q[-1], whole, weights, cfg, False)
+        rt = track_poses(kin, world, T_back, np.full(n, s1), o.q[-1], arm, weights, cfg, False)
         if rt.success or dist / 2 < cfg.min_retreat_distance - 1e-9:
             break
         dist /= 2

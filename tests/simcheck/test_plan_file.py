@@ -14,8 +14,8 @@ from simcheck.errors import PlanFileError
 from simcheck.given_plan import bind_plan
 from simcheck.plan_file import PLAN_FORMAT, join_plans, plan_from_arrays, plan_from_dict, plan_to_dict, read_plan, write_plan
 
-NAMES = ["base_x", "base_y", "base_yaw"] + [f"panda_joint{i}" for i in range(1, 8)]
-HOME = [1.2, 0.0, math.pi, 0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785]
+NAMES = ["base_x", "base_y", "base_yaw", "torso_lift"] + [f"panda_joint{i}" for i in range(1, 8)]
+HOME = [1.2, 0.0, math.pi, 0.0, 0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785]
 
 
 def _doc():
@@ -46,8 +46,8 @@ def test_gripper_state_while_moving_follows_the_commands():
 
 @pytest.mark.parametrize("edit, field", [
     (lambda d: d.update(format="partscene.plan/2"), "field 'format'"),
-    (lambda d: d["segments"][0]["waypoints"][1].__setitem__(4, float("nan")), "'segments[0].waypoints[1][4]' (panda_joint2)"),
-    (lambda d: d["segments"][1]["waypoints"][2].pop(), "'segments[1].waypoints[2]' has 9 values"),
+    (lambda d: d["segments"][0]["waypoints"][1].__setitem__(4, float("nan")), "'segments[0].waypoints[1][4]' (panda_joint1)"),
+    (lambda d: d["segments"][1]["waypoints"][2].pop(), "'segments[1].waypoints[2]' has 10 values"),
     (lambda d: d["segments"][0].update(t=[0.0, 0.2, 0.1]), "'segments[0].t[2]'"),
     (lambda d: d["segments"][0].update(t=[0.1, 0.2, 0.3]), "'segments[0].t[0]' must be 0"),
     (lambda d: d["segments"][0].update(dt=0.1), "'segments[0]' ('approach') needs exactly one of 't'"),
@@ -73,10 +73,10 @@ def test_binding_names_a_joint_the_robot_lacks_or_the_plan_lacks():
     with pytest.raises(PlanFileError, match="'joint_names': 'panda_joint22' is not a joint of robot"):
         bind_plan(plan_from_dict(doc, "doc"), robot, {}, "scene.urdf")
     doc = _doc()
-    del doc["joint_names"][5]
+    del doc["joint_names"][6]
     for s in doc["segments"]:
         for row in s["waypoints"]:
-            del row[5]
+            del row[6]
     with pytest.raises(PlanFileError, match="'joint_names' lacks robot joint 'panda_joint3'"):
         bind_plan(plan_from_dict(doc, "doc"), robot, {}, "scene.urdf")
     doc = _doc()
@@ -95,7 +95,7 @@ def test_binding_names_a_joint_the_robot_lacks_or_the_plan_lacks():
 
 @pytest.mark.parametrize("edit, field", [
     (lambda d: d["segments"][0]["waypoints"][0].__setitem__(0, float("nan")), "segments[0].waypoints[0][0]"),
-    (lambda d: d["joint_names"].pop(), "segments[0].waypoints[0]' has 10 values, 'joint_names' has 9"),
+    (lambda d: d["joint_names"].pop(), "segments[0].waypoints[0]' has 11 values, 'joint_names' has 10"),
     (lambda d: d.update(format="partscene.plan/7"), "field 'format'"),
     (lambda d: d["joint_names"].__setitem__(9, "wrist"), "'wrist' is not a joint of robot"),
     (lambda d: [d["joint_names"].pop(5)] + [row.pop(5) for s in d["segments"] for row in s["waypoints"]],
@@ -153,10 +153,11 @@ def test_ompl_print_as_matrix_converts_to_a_plan():
     from simcheck.plan_adapters import plan_from_ompl_matrix
 
     out = subprocess.run([sys.executable, "-c", _OMPL_PATH], capture_output=True, text=True, timeout=60, check=True)
-    plan = plan_from_ompl_matrix(out.stdout, NAMES, dt=0.2, gripper="open", name="approach")
+    names = [n for n in NAMES if n != "torso_lift"]      # the SE2 base and the 7 arm joints OMPL planned
+    plan = plan_from_ompl_matrix(out.stdout, names, dt=0.2, gripper="open", name="approach")
     q = plan.segments[0].q
     assert q.shape == (3, 10)
     assert np.allclose(q[:, 0], [1.2, 1.1, 1.0]) and np.allclose(q[:, 2], 3.0)
     assert np.allclose(q[2, 3:], 0.1 * np.arange(7) + 0.02)
     with pytest.raises(PlanFileError, match="line 2 has 2 numbers"):
-        plan_from_ompl_matrix("1 2 3\n1 2\n", NAMES, dt=0.1)
+        plan_from_ompl_matrix("1 2 3\n1 2\n", names, dt=0.1)
