@@ -203,7 +203,8 @@ CRITERIA_UNITS = {"opened_fraction": "", "opened_overshoot": "", "settled_linear
                   "contact_penetration_tolerance": "m", "grasp_slip_tolerance": "m",
                   "joint_limit_tolerance": "rad or m", "plan_penetration_tolerance": "m",
                   "recheck_resolution": "rad or m", "max_waypoint_gap": "rad or m", "acceleration_window": "s",
-                  "articulation_tolerance": "m or rad", "rest_contact_slack": "m"}
+                  "articulation_tolerance": "m or rad", "rest_contact_slack": "m",
+                  "closed_range_fraction": "", "closed_gap_prismatic": "m", "closed_gap_revolute": "rad"}
 
 DEFAULT_PHYSICS = PhysicsConfig()
 DEFAULT_CRITERIA = CriteriaConfig()

@@ -98,7 +98,7 @@ def test_binding_names_a_joint_the_robot_lacks_or_the_plan_lacks():
     (lambda d: d["joint_names"].pop(), "segments[0].waypoints[0]' has 11 values, 'joint_names' has 10"),
     (lambda d: d.update(format="partscene.plan/7"), "field 'format'"),
     (lambda d: d["joint_names"].__setitem__(9, "wrist"), "'wrist' is not a joint of robot"),
-    (lambda d: [d["joint_names"].pop(5)] + [row.pop(5) for s in d["segments"] for row in s["waypoints"]],
+    (lambda d: [d["joint_names"].pop(6)] + [row.pop(6) for s in d["segments"] for row in s["waypoints"]],
      "'joint_names' lacks robot joint 'panda_joint3'"),
 ])
 def test_cli_exits_2_naming_the_field(tmp_path, capsys, edit, field):
