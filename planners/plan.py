@@ -243,15 +243,17 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
     timings["open"] = time.perf_counter() - t
     if not o.success:
         return PlanStatus.OPENING_FAILED, f"opening motion failed at {o.s[-1] if len(o.s) else s0:.3f}: {o.reason}"
-    # Retreat: back off along the approach axis with the gripper open, at the final joint value; the arm first
-    # (the base stays where the opening left it, clear of the opened part; whole-body steps only where needed).
+    # Retreat: back off along the approach axis with the gripper open, at the final joint value, the whole body
+    # with the base weighted down further (it stays near where the opening left it, clear of the opened part).
     t = time.perf_counter()
     T_end = kin.tool_pose(o.q[-1])
     dist = cfg.retreat_distance
+    w_back = weights.copy()
+    w_back[:3] *= _RETREAT_BASE
     while True:
         n = max(2, int(math.ceil(dist / 0.01)) + 1)
         T_back = np.array([_translate_tool(T_end, -dist * u) for u in np.linspace(0, 1, n)])
-        rt = track_poses(kin, world, T_back, np.full(n, s1), o.q[-1], arm, weights, cfg, False)
+        rt = track_poses(kin, world, T_back, np.full(n, s1), o.q[-1], whole, w_back, cfg, False)
         if rt.success or dist / 2 < cfg.min_retreat_distance - 1e-9:
             break
         dist /= 2
@@ -321,6 +323,10 @@ def _what(world, q, s) -> str:
 #: how far (m or rad) a given start configuration may lie beyond a joint limit and still be planned from, moved
 #: onto the limit: a robot that ended the previous task on a limit reads back a hair beyond it
 _START_LIMIT_SLACK = 1e-3
+
+
+#: the base's motion weight in the retreat relative to the opening's (the base stays near where it opened)
+_RETREAT_BASE = 0.3
 
 
 def _start_configuration(world, spec, stand: StandPose, start, cfg, s0):
