@@ -33,7 +33,7 @@ from planners.task import parse_tasks
 from scenes.description import file_stem
 from scenes.outcome import Outcome
 from simcheck.perturbations import Perturbation, sample_perturbation
-from simcheck.perturbed_scene import write_perturbed_scene
+from simcheck.perturbed_scene import base_error_inverse, write_perturbed_scene
 from simcheck.robust_correction import guarded_plan
 from simcheck.robust_spreads import (DEFAULT_PHYSICS_RANGES, DEFAULT_ROBOT_ERRORS, JointSpreads, check_robust_args,
                                      joint_spreads_for, spreads_dict)
@@ -67,11 +67,15 @@ def _pivot_xy(plan) -> tuple[float, float]:
 
 
 def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics, criteria, pivot, workdir: str,
-               out: str | None = None, images: bool = False, video: bool = False) -> SampleResult:
+               out: str | None = None, images: bool = False, video: bool = False, opening_type: str = "",
+               opening_axis=None) -> SampleResult:
     """Execute ``plan`` in the world of perturbation ``p`` (built from scene ``src``) and judge it.
 
     Runs in a worker process (the world is created and closed here). ``out``: a folder for the rollout /
-    images of a replayed sample. Returns the sample's outcome, reason and criterion margins.
+    images of a replayed sample. ``opening_type``, ``opening_axis`` (3,): the planned joint's type and world
+    axis toward which it opens (the estimate's, as plain ``certify`` measures the opening; turned with the
+    sampled world's scene by its base error); None: the joint's own signed change. Returns the sample's
+    outcome, reason and criterion margins.
     """
     from simcheck.criteria import rollout_criteria
     from simcheck.execute import execute_task
@@ -80,6 +84,8 @@ def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics
     urdf = write_perturbed_scene(src, p, Path(workdir) / f"sample{p.index}.urdf", pivot)
     if p.reperception is not None:
         plan = guarded_plan(plan, p.base_error, p.reperception, pivot, p.handle_shift)
+    if opening_axis is not None:
+        opening_axis = base_error_inverse(p.base_error, pivot)[:3, :3] @ np.asarray(opening_axis, dtype=float)
     phys = dataclasses.replace(physics, robot_position_gain=physics.robot_position_gain * p.tracking_gain)
     try:
         with World(urdf, robot, phys) as world:
@@ -91,8 +97,8 @@ def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics
                 handle = handle_link_for(world, plan.task.joint, plan.grasp_link)
                 camera = KeyFrameCamera(world, world.scene_link_pose(handle)[:3, 3], np.array([*pivot, 1.0]),
                                         Path(out) / "images", f"sample{p.index}", video=video)
-            rollout = execute_task(world, plan, phys, requested_amount=requested,
-                                   frame_callback=camera.snap if camera else None)
+            rollout = execute_task(world, plan, phys, requested_amount=requested, opening_type=opening_type,
+                                   opening_axis=opening_axis, frame_callback=camera.snap if camera else None)
             if out is not None:
                 rollout.save(Path(out) / "rollouts" / f"{file_stem(plan.task.joint)}_sample{p.index}.npz")
                 if camera is not None and video:
@@ -163,13 +169,21 @@ def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, 
         indices = [replay_sample] if replay_sample is not None else list(range(robust))
         perts = [sample_perturbation(i, seed, tc.joint, ref.type, ref.axis_world, ref.origin_world, ref.upper, centre,
                                      jspreads, DEFAULT_PHYSICS_RANGES, DEFAULT_ROBOT_ERRORS, mode) for i in indices]
-        requested = float(plan.amount) if ref.type == read_scene_joints(scene)[tc.joint].type else float(tc.amount)
+        # measured as plain certify does (with --against too): the estimate's request along its opening
+        # direction in the world, its axis reversed for a negative amount (a reference of the other sign
+        # convention is matched by direction, not by the sign of its joint value)
+        est = read_scene_joints(scene)[tc.joint]
+        requested = abs(float(plan.amount))
+        opening_type = "revolute" if est.type == "continuous" else est.type.value
+        opening_axis = (1.0 if plan.amount >= 0 else -1.0) * np.asarray(est.axis_world, dtype=float)
         pivot = _pivot_xy(plan)
         t1 = time.perf_counter()
         with tempfile.TemporaryDirectory(prefix="partscene_robust_") as tmp:
-            args = [(str(source), p, plan, requested, sim_robot, physics, criteria, pivot, tmp) for p in perts]
+            args = [(str(source), p, plan, requested, sim_robot, physics, criteria, pivot, tmp, None, False, False,
+                     opening_type, opening_axis) for p in perts]
             if replay_sample is not None:
-                results = [run_sample(*args[0], out=None if out is None else str(out), images=images, video=video)]
+                results = [run_sample(*args[0][:9], out=None if out is None else str(out), images=images,
+                                      video=video, opening_type=opening_type, opening_axis=opening_axis)]
             else:
                 n_workers = max(1, min(len(args), workers or os.cpu_count() or 1))
                 with ProcessPoolExecutor(n_workers, mp_context=_context()) as pool:

@@ -128,3 +128,15 @@ def test_robust_against_a_reference_samples_physics_only_on_copies_of_the_refere
         assert p["axis_off_deg"] == 0.0 and p["origin_off_m"] == 0.0 and p["upper"] == sj.upper
         assert p["base_error"] == [0.0, 0.0, 0.0] and p["tracking_gain"] == 1.0
     assert len({p["joint_friction"] for p in block["perturbations"]}) == 2
+
+
+def test_robust_against_a_reference_of_the_other_sign_convention_is_matched_by_direction(tmp_path):
+    """The samples measure the opening as plain ``--against`` does: along the estimate's opening direction,
+    so a reference whose door opens toward negative values is opened, not failed for its sign."""
+    from test_simcheck_third_party_directions import CAB, DOOR as CAB_DOOR, _negative_opening
+
+    cert = certify(CAB, [f"open-door:{CAB_DOOR}"], against=_negative_opening(tmp_path), robust=2, images=False,
+                   out=None)
+    block = cert[CAB_DOOR].robust
+    assert block["mode"] == "physics" and block["successes"] == 2, block["failures"]
+    assert cert[CAB_DOOR].status is Outcome.FAILED       # 2 of 2 cannot reach the 0.9 bound
