@@ -129,6 +129,9 @@ class FittingConfig:
     slab_min_cut: float = 0.003
     """... the edge points counted lie at least this (m) behind the seen face (on a clean scan 2.5σ is
     about 0 and the face's own points would count as edge points at depth 0)."""
+    slab_min_turn: float = 0.01
+    """... on a clean scan a slab's box is turned onto its face only when tilted off it by more than this
+    (rad); otherwise only its thickness is measured."""
     slab_max_tilt: float = 0.2
     """... the slab's box is turned onto the plane of its seen face by at most this (rad)."""
     slab_hidden_fraction: float = 0.05

@@ -280,11 +280,17 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
         lo, hi = -prim.size / 2, prim.size / 2
         if side is None or prim.size[k] >= config.front_thickness or not _vertical_panel(
                 lo, hi, k, prim.T_world_part[:3, :3], config):
-            # a slab whose edges show it notably thinner than its box (noise just under the floor) is measured
+            # a slab whose edges show it notably thinner than its box (noise just under the floor): its
+            # thickness is measured; an untilted box keeps its orientation and in-plane extents
             slab = _slab_box(prim, q, k, bool(f % 2), config)
             if slab is None or slab.size[k] > prim.size[k] - config.noise_floor:
                 return prim, False
-            return slab, False
+            if _frame_angle(slab.T_world_part[:3, :3], prim.T_world_part[:3, :3]) > config.slab_min_turn:
+                return slab, False          # a box tilted off the slab's face by the noise: turned onto it
+            across = prim.to_part(slab.corners())[:, k]
+            lo, hi = lo.copy(), hi.copy()
+            lo[k], hi[k] = float(across.min()), float(across.max())
+            return _box_between(prim, lo, hi), False
         # (a face-only cloud got min_thickness about the face: the face is the median of its points)
         seen = float(np.median(q[_facing(normals, seen_mask, prim.T_world_part[:3, k], config), k]))
         lo, hi = lo.copy(), hi.copy()
