@@ -195,7 +195,7 @@ def test_a_plan_with_two_expectations_is_judged_per_expectation(planned, tmp_pat
     for joint in (DRAWER, DOOR):                      # each part executed and judged as its planned task was
         for c in cert[joint].criteria:
             r = replay[joint].criterion(c.name)
-            assert r.passed and abs(r.value - c.value) <= max(0.05 * abs(c.value), 5 * ABS_TOL[c.unit]), \
+            assert r.passed and abs(r.value - c.value) <= max(0.01 * abs(c.value), ABS_TOL[c.unit]), \
                 (joint, c.name, c.value, r.value)
     assert replay[DOOR].start_state[DRAWER] > 0.3     # the drawer stayed open while the door opened
 
