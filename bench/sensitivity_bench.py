@@ -312,15 +312,19 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _grasp_model(physics) -> str:
-    """One line naming the grasp model behind the verdicts: the default robot's gripper (grip force,
-    pad friction, holding force) when its spec has one, else the physics config's attachment bound."""
+    """One line naming the grasp model behind the verdicts: the default robot's gripper (grip force, pad
+    friction, holding force), what ``grasp_force`` certifies (holding force / safety factor) and the arm's
+    compliance (its joint stiffness, else the physics config's isotropic spring)."""
     import planners
+    from simcheck.config import DEFAULT_CRITERIA
 
-    gripper = getattr(planners.default_robot(), "gripper", None)
-    if gripper is not None:
-        return (f"grip force {gripper.grip_force:g} N, pad friction {gripper.pad_friction:g}, "
-                f"holding force {gripper.holding_force:g} N")
-    return f"a weld bounded by {physics.grasp_max_force:g} N per constraint row"
+    robot = planners.default_robot()
+    g = robot.gripper
+    arm = (f"joint impedance {'/'.join(f'{k:g}' for k in robot.joint_stiffness)} N*m/rad" if robot.joint_stiffness
+           else f"an isotropic {physics.grasp_stiffness:g} N/m spring")
+    return (f"grip force {g.grip_force:g} N, pad friction {g.pad_friction:g}, holding force {g.holding_force:g} N "
+            f"(certified up to {g.holding_force / DEFAULT_CRITERIA.grasp_safety_factor:g} N: safety factor "
+            f"{DEFAULT_CRITERIA.grasp_safety_factor:g}); arm compliance: {arm}")
 
 
 if __name__ == "__main__":

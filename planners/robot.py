@@ -20,6 +20,8 @@ and a tool frame named in a :class:`RobotSpec`, is planned for without planner c
 
 from __future__ import annotations
 
+import math
+
 import hashlib
 import os
 import re
@@ -30,7 +32,7 @@ import numpy as np
 
 from scenes.description import write_text_atomic
 
-__all__ = ["RobotSpec", "GripperModel", "default_robot", "robot_cache_dir", "PANDA_HOME"]
+__all__ = ["RobotSpec", "GripperModel", "default_robot", "robot_cache_dir", "PANDA_HOME", "PANDA_JOINT_STIFFNESS"]
 
 #: Panda arm joint acceleration limits, rad/s^2 (Franka Emika's published joint limits, libfranka docs).
 PANDA_MAX_ACCELERATION = (15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0)
@@ -40,6 +42,9 @@ BASE_MAX_ACCELERATION = (4.0, 4.0, 4.0)
 
 #: Panda arm home configuration (rad): elbow up, hand pointing down in front of the base.
 PANDA_HOME = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
+#: Joint stiffness, N*m/rad, of the Panda's internal joint impedance controller under which it follows a
+#: joint trajectory: the values libfranka's examples set (``setDefaultBehavior`` in examples_common.cpp).
+PANDA_JOINT_STIFFNESS = (3000.0, 3000.0, 3000.0, 2500.0, 2500.0, 2000.0, 2000.0)
 
 
 @dataclass(frozen=True)
@@ -102,6 +107,9 @@ class RobotSpec:
             grasp transmits.
         max_acceleration (tuple of float): Acceleration limit of each joint of ``joint_names``, m/s^2 or rad/s^2
             (URDF has none); empty: not given (a given plan's accelerations are then not judged).
+        joint_stiffness (tuple of float): One per arm joint, N*m/rad (N/m for a prismatic joint; inf: rigid): the joint
+            impedance under which the real arm follows a plan. An executed grasp pulls with the tool's Cartesian
+            stiffness under it (the base is taken as rigid). Empty: the simulator's isotropic default.
     """
 
     urdf: Path
@@ -118,8 +126,14 @@ class RobotSpec:
     max_finger_force: float = 20.0
     gripper: GripperModel = field(default_factory=GripperModel)
     max_acceleration: tuple[float, ...] = ()
+    joint_stiffness: tuple[float, ...] = ()
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "joint_stiffness", tuple(float(k) for k in self.joint_stiffness))
+        if self.joint_stiffness and (len(self.joint_stiffness) != len(self.arm_joints)
+                                     or min(self.joint_stiffness) <= 0 or np.isnan(self.joint_stiffness).any()):
+            raise ValueError(f"RobotSpec({self.urdf}): joint_stiffness needs one positive number (inf: rigid) per arm "
+                             f"joint {self.arm_joints}, got {self.joint_stiffness}")
         object.__setattr__(self, "urdf", Path(self.urdf))
         if isinstance(self.gripper, dict):
             object.__setattr__(self, "gripper", GripperModel(**self.gripper))
@@ -287,4 +301,5 @@ def default_robot() -> RobotSpec:
         finger_open=0.04,
         finger_closed=0.0,
         max_finger_force=20.0,
+        joint_stiffness=(math.inf,) + PANDA_JOINT_STIFFNESS,      # the torso lift's column taken as rigid
     )

@@ -19,7 +19,7 @@ import numpy as np
 from simcheck.bullet_poses import T_from_pos_quat
 from simcheck.joint_table import JointInfo, joint_table
 
-__all__ = ["pb", "c_output_logged", "pybullet_said", "pybullet_version", "body_joint_table", "link_pose",
+__all__ = ["movable_joints", "point_jacobian", "mass_matrix", "pb", "c_output_logged", "pybullet_said", "pybullet_version", "body_joint_table", "link_pose",
            "point_state"]
 
 
@@ -116,3 +116,29 @@ def point_state(client: int, body: int, index: int, p_local: np.ndarray) -> tupl
     # v = v_com + w x r, the cross product written out (np.cross costs ~30 us on (3,) vectors; same result)
     v = np.asarray(s[6]) + np.array([wy * rz - wz * ry, wz * rx - wx * rz, wx * ry - wy * rx])
     return p, v
+
+
+def movable_joints(client: int, body: int) -> list[int]:
+    """Indices of the non-fixed joints of ``body``, in PyBullet's order (the columns of its Jacobians)."""
+    return [j for j in range(pb.getNumJoints(body, physicsClientId=client))
+            if pb.getJointInfo(body, j, physicsClientId=client)[2] != pb.JOINT_FIXED]
+
+
+def point_jacobian(client: int, body: int, index: int, p_local: np.ndarray) -> np.ndarray:
+    """(3, n) linear Jacobian, world frame, m per joint unit, of the point ``p_local`` (3,) (link frame, m)
+    of link ``index`` (>= 0) over the n :func:`movable_joints` of ``body`` at its current state."""
+    movable = movable_joints(client, body)
+    q = [float(st[0]) for st in pb.getJointStates(body, movable, physicsClientId=client)]
+    s = pb.getLinkState(body, index, computeForwardKinematics=1, physicsClientId=client)
+    T_link_com = T_from_pos_quat(s[2], s[3])
+    p_com = (np.linalg.inv(T_link_com) @ np.append(np.asarray(p_local, dtype=float), 1.0))[:3]
+    zero = [0.0] * len(q)
+    return np.asarray(pb.calculateJacobian(body, index, p_com.tolist(), q, zero, zero, physicsClientId=client)[0],
+                      dtype=float).reshape(3, len(q))
+
+
+def mass_matrix(client: int, body: int) -> np.ndarray:
+    """(n, n) joint-space mass matrix of ``body`` over its :func:`movable_joints` at its current state."""
+    q = [float(st[0]) for st in pb.getJointStates(body, movable_joints(client, body), physicsClientId=client)]
+    return np.asarray(pb.calculateMassMatrix(body, q, physicsClientId=client), dtype=float).reshape(len(q), len(q))
+

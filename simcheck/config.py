@@ -57,9 +57,9 @@ class PhysicsConfig:
         grasp_force_window: seconds over which the grasp's force is averaged (a running mean at every
             physics step) for the slip test and the recorded ``grasp_force``: a friction grip slips under
             a sustained load, not under a one-step solver impulse.
-        grasp_stiffness: stiffness, N/m, of the spring that holds the grasped point to the tool: the
-            compliance of a real arm under impedance control and of the pads (7000: at the 140 N
-            holding force the handle lags 2 cm, ``CriteriaConfig.grasp_slip_tolerance``).
+        grasp_stiffness: stiffness, N/m, of the isotropic spring that holds the grasped point to the tool
+            for a robot whose spec gives no joint stiffness (``SimRobot.joint_stiffness``; with one, the
+            spring is the tool's Cartesian stiffness under that joint impedance at every step).
         grasp_damping: damping, N*s/m, of that spring.
         grasp_max_turn: the grasp is lost when the handle has turned more than this in the fingers, rad
             (the grasp transmits no torque; 20 deg turns a bar out of flat pads).
@@ -144,6 +144,16 @@ class CriteriaConfig:
         contact_penetration_tolerance: ... or when their penetration is deeper than this, metres.
         grasp_slip_tolerance: maximum slip between the tool frame and the grasped point of the handle
             during the opening segment, metres; the grasp also must exist for the whole segment.
+        grasp_safety_factor: the ``grasp_force`` criterion allows at most the gripper's holding force
+            divided by this (2: gripper sizing practice for a friction grip, required grip >= load x
+            safety factor / (friction x contacts), so that an unknown handle finish, a worn pad or a
+            dynamic peak does not slip the handle). The simulated grasp still slips only above the
+            holding force itself.
+        end_stop_tolerance: a part whose joint is within this (m or rad) of one of its limits rests on its
+            end stop; the grasp's pull is not judged there (``grasp_force``, ``interaction_force``): a plan
+            asking a few mm past the real stop pulls into the stop after the part is open, and the handle
+            slides in the fingers (``grasp_held``). 0.002: PyBullet holds a loaded joint within a fraction
+            of a millimetre of its limit.
         joint_limit_tolerance: maximum excursion of a robot joint beyond its URDF limits, rad or m.
         plan_penetration_tolerance: penetration depth, metres, above which a state of the densely
             interpolated plan counts as colliding in the independent PyBullet re-check.
@@ -177,6 +187,8 @@ class CriteriaConfig:
     contact_force_tolerance: float = 5.0
     contact_penetration_tolerance: float = 0.005
     grasp_slip_tolerance: float = 0.02
+    grasp_safety_factor: float = 2.0
+    end_stop_tolerance: float = 0.002
     joint_limit_tolerance: float = 0.01
     plan_penetration_tolerance: float = 0.005
     recheck_resolution: float = 0.02

@@ -15,7 +15,7 @@ import numpy as np
 from simcheck.config import DEFAULT_CRITERIA, CriteriaConfig
 from simcheck.rollout import Rollout
 
-__all__ = ["CriterionResult", "at_release", "opened_amount", "opened_fraction", "opened_overshoot", "closed_gap", "closed_tolerance",
+__all__ = ["CriterionResult", "at_release", "at_end_stop", "opened_amount", "opened_fraction", "opened_overshoot", "closed_gap", "closed_tolerance",
            "handle_path_deviation", "settled_linear_speed",
            "settled_angular_speed", "unexpected_contact_force", "unexpected_contact_depth", "rest_contact_penetration", "grasp_held", "grasp_force",
            "interaction_force",
@@ -270,22 +270,53 @@ def grasp_held(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionRes
                   f"handle {r.handle_link} slipped {value:.3f} m in the gripper{note}")
 
 
+def at_end_stop(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> np.ndarray:
+    """(n,) bool: the executed joint is within ``c.end_stop_tolerance`` of (or past) one of its limits and
+    has left its starting value: the part rests on its end stop (none when the limits are unknown)."""
+    lo, hi = np.asarray(r.object_limits, dtype=float)
+    q = np.asarray(r.object_q, dtype=float)
+    tol = c.end_stop_tolerance
+    moved = np.abs(q - r.object_q0) > tol
+    with np.errstate(invalid="ignore"):
+        return moved & ((q >= hi - tol) | (q <= lo + tol))
+
+
+def _grasp_load(r: Rollout, c: CriteriaConfig) -> tuple[np.ndarray, float]:
+    """(n,) the grasp's recorded force (50 ms mean), N, where it is judged -- grasped, and the part not on
+    its end stop -- else 0; and the peak of what was left out at the end stop (0 when nothing)."""
+    held = r.grasp_active | (r.grasp_force > 0)
+    stop = at_end_stop(r, c)
+    force = np.where(held & ~stop, r.grasp_force, 0.0).astype(float)
+    at_stop = np.where(held & stop, r.grasp_force, 0.0)
+    return force, float(at_stop.max()) if r.n else 0.0
+
+
 def grasp_force(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
     """Peak, N, over the grasped phase of the grasp's force averaged over ``grasp_force_window`` (the
-    recorded ``grasp_force``); threshold: the force the robot's gripper holds (``r.holding_force``, from
-    its ``GripperModel``). ``inf`` when no grasp was made."""
-    desc = "peak force through the grasp (mean over 50 ms) / what the gripper holds"
+    recorded ``grasp_force``); threshold: what the robot's gripper holds (``r.holding_force``, from its
+    ``GripperModel``) divided by ``c.grasp_safety_factor``: a pull the gripper holds only without margin
+    fails. ``inf`` when no grasp was made.
+
+    Samples with the part on its end stop (:func:`at_end_stop`) are left out: a plan that asks for a few
+    millimetres past the real stop pulls into the stop once the part is open, not to open it; the
+    handle then slides in the fingers, which ``grasp_held`` judges (at most ``grasp_slip_tolerance``),
+    and ``opened_fraction`` judges how far it opened."""
+    allowed = r.holding_force / c.grasp_safety_factor
+    desc = (f"peak force through the grasp (mean over 50 ms) while opening, the part off its end stop / what the "
+            f"gripper holds with a safety factor of {c.grasp_safety_factor:g}")
     held = r.grasp_active | (r.grasp_force > 0)
     if not held.any():
-        return _judge("grasp_force", math.inf, r.holding_force, "<=", "N", desc,
+        return _judge("grasp_force", math.inf, allowed, "<=", "N", desc,
                       f"handle {r.handle_link} was never grasped, so no grasp force was measured")
-    force = np.where(held, r.grasp_force, 0.0)
+    force, stop_peak = _grasp_load(r, c)
     k = int(np.argmax(force))
     seg = r.segment_names[r.segment[k]] if 0 <= r.segment[k] < len(r.segment_names) else "settle"
-    return _judge("grasp_force", float(force[k]), r.holding_force, "<=", "N", desc,
+    stop = f"; {stop_peak:.0f} N pulling {r.joint} against its end stop, not judged" if stop_peak > allowed else ""
+    return _judge("grasp_force", float(force[k]), allowed, "<=", "N", desc,
                   f"pulling {r.joint} took {force[k]:.0f} N through the grasp of {r.handle_link} at t={r.t[k]:.2f} s "
-                  f"during {seg}; the gripper holds {r.holding_force:.0f} N (the estimated articulation does not "
-                  f"match how the part moves, or the part is blocked)")
+                  f"during {seg}; the gripper holds {r.holding_force:.0f} N, {allowed:.0f} N with a safety factor of "
+                  f"{c.grasp_safety_factor:g} (the estimated articulation does not match how the part moves, or the "
+                  f"part is blocked)", stop.lstrip("; "))
 
 
 def robot_joint_limits(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
@@ -315,8 +346,9 @@ def interaction_force(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> Crite
     """Largest force, N, the robot applied to the task's part other than by squeezing it between its
     fingers: per sample, the grasp's force (50 ms mean) plus the contact forces of every robot link that
     is not a finger on the moving link or the handle. Threshold: what the gripper holds
-    (``r.holding_force``): the robot's spec bounds what it applies to the object."""
-    total = np.where(r.grasp_active | (r.grasp_force > 0), r.grasp_force, 0.0).astype(float)
+    (``r.holding_force``): the robot's spec bounds what it applies to the object. The grasp's pull is left
+    out while the part rests on its end stop, as in :func:`grasp_force`."""
+    total, _ = _grasp_load(r, c)
     on_part = np.isin(r.contact_scene_link, [r.moving_link, r.handle_link]) & ~np.isin(r.contact_robot_link,
                                                                                           list(r.finger_links))
     pushed = np.zeros(r.n)

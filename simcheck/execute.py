@@ -10,11 +10,12 @@ How the grasp is made -- what the robot's gripper can do, not a weld. After the 
 close; a grasp forms only where a real two-finger gripper holds (:func:`simcheck.grasp.grasp_formation`
 on PyBullet's contact points): both finger pads touch the handle from opposite sides, against their
 closing directions, and the fingers were stopped by the handle, not fully closed. Then the grasped point
-of the handle is held to the tool frame's origin by a spring (``grasp_stiffness``, ``grasp_damping``;
-forces applied every physics step, :meth:`World.attach`): the compliance of a real arm opening doors
-under impedance control and of its finger pads (a rigid grasp on the stiff position-controlled simulated
-arm presses forces through the handle that no compliant real arm produces; docs/decisions.md). The
-spring force is capped at
+of the handle is held to the tool frame's origin by a spring (forces applied every physics step,
+:meth:`World.attach`): the compliance of the real arm following the plan under its joint impedance -- the
+tool's Cartesian stiffness ``(J C_q J^T)^-1`` at the current configuration from the robot's
+``joint_stiffness`` (else an isotropic ``grasp_stiffness``), damped by ``grasp_damping`` (a rigid grasp on
+the stiff position-controlled simulated arm presses forces through the handle that no compliant real arm
+produces; docs/decisions.md). The spring force is capped at
 what pad friction holds: the robot spec's ``GripperModel`` gives ``F = 2 * mu * grip force``; above it the
 handle slides in the fingers. The force the spring needed (before the cap) is recorded every step
 (``grasp_force``: its 50 ms running mean); the grasp transmits no torque (a two-pad grip resists about
@@ -275,7 +276,8 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
                                  normal_angle=config.grasp_normal_angle, min_travel=config.grasp_min_travel,
                                  min_width=config.grasp_min_width)
         if formed.ok:
-            world.attach(handle, rec.holding_force, config.grasp_stiffness, config.grasp_damping)
+            stiffness = dict(robot.joint_stiffness) if robot.joint_stiffness else config.grasp_stiffness
+            world.attach(handle, rec.holding_force, stiffness, config.grasp_damping)
             rec.slid = False
             T_w_tool = world.robot_link_pose(robot.tool_link)
             rec.T_handle_grasp = np.linalg.inv(world.scene_link_pose(handle)) @ T_w_tool
@@ -312,6 +314,8 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
     rec.sample()
     snap("end")
     lo, hi = world.robot_limits()
+    info = world.scene_joint(joint)
+    object_limits = np.array([info.lower, info.upper] if info.lower <= info.upper else [np.nan, np.nan], dtype=float)
     rows = rec.rows
     cr = rec.contact_rows
     orows = rec.obj_rows
@@ -335,6 +339,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
         opening_axis=None if opening_axis is None else np.asarray(opening_axis, dtype=float).reshape(3),
         holding_force=float(rec.holding_force), opening_segment=opening, release_segment=plan.release_segment,
         closing=bool(closing), joint_range=float(joint_range),
+        object_limits=object_limits,
         finger_q=np.asarray(rows["finger_q"]).reshape(len(rows["t"]), -1),
         finger_contacts=np.asarray(rows["finger_contacts"], dtype=int),
         contact_sample=np.asarray([c[0] for c in cr], dtype=int),

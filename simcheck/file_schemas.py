@@ -76,6 +76,7 @@ ROBOT_SPEC_SCHEMA = {
         "finger_closed": {"type": "number", "description": "a finger opening in metres"},
         "max_finger_force": {"type": "number", "exclusiveMinimum": 0, "description": "a force in newtons"},
         "max_acceleration": {**_NUMBERS, "description": "one acceleration limit per base and arm joint (m/s^2, rad/s^2)"},
+        "joint_stiffness": {**_NUMBERS, "description": "one joint stiffness per arm joint (N*m/rad, N/m)"},
         "gripper": {
             "type": "object", "additionalProperties": False,
             "description": "a mapping with grip_force (N) and pad_friction",

@@ -3,6 +3,9 @@ frame origin and the held point of a scene link, world frame, N and metres.
 
 The adapter (:meth:`simcheck.world.World.attach`) reads the two points' states every step, applies the
 force returned here as equal and opposite external forces, and moves the held point when it slides.
+The spring's stiffness is a (3, 3) matrix: the arm's Cartesian stiffness at the tool under its joint
+impedance (:func:`cartesian_stiffness`), or an isotropic one; it is capped where the explicit, once per
+step integration of the spring stays stable (:func:`stable_stiffness`).
 """
 
 from __future__ import annotations
@@ -11,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["GraspSpring", "spring_force"]
+__all__ = ["GraspSpring", "spring_force", "cartesian_stiffness", "stable_stiffness"]
 
 
 @dataclass
@@ -20,7 +23,10 @@ class GraspSpring:
 
     body, index : the held scene link (PyBullet body id and link index)
     p_local : (3,) the held point in the link's frame, m (moves when the handle slides)
-    stiffness : N/m; damping : N*s/m; cap : the largest force the grasp transmits, N
+    stiffness : (3, 3) N/m, or one number (isotropic); the adapter updates it when it follows the arm's
+        configuration; damping :
+        N*s/m; cap : the largest force the grasp transmits, N
+    max_stiffness : stiffness eigenvalues above this, N/m, are lowered to it (``inf``: none)
     force : the norm of the force holding the point took in the last step, before the cap, N
     slid : the force has reached the cap since the grasp was made
     """
@@ -28,11 +34,32 @@ class GraspSpring:
     body: int
     index: int
     p_local: np.ndarray
-    stiffness: float
+    stiffness: np.ndarray | float
     damping: float
     cap: float
+    max_stiffness: float = float("inf")
     force: float = 0.0
     slid: bool = False
+
+
+def cartesian_stiffness(J: np.ndarray, joint_stiffness: np.ndarray) -> np.ndarray:
+    """(3, 3) translational stiffness, N/m, at a point whose (3, n) linear Jacobian over n joints is ``J``
+    (m per rad or m) when each joint is held by a spring of ``joint_stiffness`` (n,) N*m/rad (N/m):
+    ``(J C_q J^T)^-1`` with ``C_q`` the diagonal joint compliance. Joints left out of ``J`` are rigid."""
+    J = np.asarray(J, dtype=float)
+    return np.linalg.inv((J / np.asarray(joint_stiffness, dtype=float)) @ J.T)
+
+
+def stable_stiffness(J: np.ndarray, M: np.ndarray, time_step: float) -> float:
+    """Largest stiffness, N/m, of a spring integrated explicitly once per ``time_step`` s on a point of a
+    body whose (3, n) linear Jacobian over its n joints is ``J`` and (n, n) mass matrix is ``M``: the
+    point's smallest effective mass ``1 / max eig(J M^-1 J^T)``, kg, over ``time_step**2`` (natural
+    frequency x time step = 1, inside the stability bound of 2). ``inf`` when the point cannot move."""
+    J = np.asarray(J, dtype=float)
+    if not J.size:
+        return float("inf")
+    top = float(np.linalg.eigvalsh(J @ np.linalg.solve(np.asarray(M, dtype=float), J.T)).max())
+    return float("inf") if top <= 1e-12 else 1.0 / top / time_step ** 2
 
 
 def spring_force(spring: GraspSpring, p_held: np.ndarray, v_held: np.ndarray, p_tool: np.ndarray,
@@ -41,18 +68,25 @@ def spring_force(spring: GraspSpring, p_held: np.ndarray, v_held: np.ndarray, p_
     to (3,) world m, or None when it holds), from the held point's and the tool's positions (3,) m and
     velocities (3,) m/s. Records the uncapped force and the slide in ``spring``.
 
-    The force is ``stiffness * stretch + damping * relative velocity`` capped at ``spring.cap``; when the
-    stretch alone exceeds ``cap / stiffness`` the held point slides toward the tool so that the spring
-    stays at the cap."""
+    The force is ``K @ stretch + damping * relative velocity`` (``K``: ``spring.stiffness`` with its
+    eigenvalues capped at ``spring.max_stiffness``), capped at ``spring.cap``; when the spring force
+    alone exceeds the cap, the held point slides toward the tool so that the spring stays at the cap."""
+    K = np.asarray(spring.stiffness, dtype=float)
+    if K.ndim == 0:
+        K = float(K) * np.eye(3)
+    w, V = np.linalg.eigh(K)
+    if w.max() > spring.max_stiffness:
+        K = (V * np.minimum(w, spring.max_stiffness)) @ V.T
     stretch = p_tool - p_held
-    f = spring.stiffness * stretch + spring.damping * (v_tool - v_held)
+    f_spring = K @ stretch
+    f = f_spring + spring.damping * (v_tool - v_held)
     norm = float(np.linalg.norm(f))
     spring.force = norm
     slide_to = None
     if norm > spring.cap:
         f *= spring.cap / norm
         spring.slid = True
-        s = float(np.linalg.norm(stretch))
-        if s > spring.cap / spring.stiffness:
-            slide_to = p_tool - stretch * (spring.cap / spring.stiffness / s)
+        pull = float(np.linalg.norm(f_spring))
+        if pull > spring.cap:
+            slide_to = p_tool - stretch * (spring.cap / pull)
     return f, slide_to

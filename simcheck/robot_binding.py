@@ -36,6 +36,10 @@ class SimRobot:
         base_links: links allowed to touch the floor (the mobile base).
         gripper: what the gripper holds (``planners.robot.GripperModel``): the grasp's force bound.
         max_acceleration: acceleration limits of ``joint_names``, m/s^2 or rad/s^2 (empty: not given).
+        joint_stiffness: (joint name, stiffness) pairs, N*m/rad (N/m for a prismatic joint): the joint
+            impedance under which the real arm follows a plan; the grasp's spring is the tool's Cartesian
+            stiffness under it (:meth:`simcheck.world.World.attach`). Empty: an isotropic spring of
+            ``PhysicsConfig.grasp_stiffness``.
     """
 
     urdf: Path
@@ -50,6 +54,7 @@ class SimRobot:
     finger_force: float = 40.0
     gripper: GripperModel = GripperModel()
     max_acceleration: tuple[float, ...] = ()
+    joint_stiffness: tuple[tuple[str, float], ...] = ()
 
     def __post_init__(self) -> None:
         if not Path(self.urdf).is_file():
@@ -109,8 +114,23 @@ def sim_robot_from_spec(spec) -> SimRobot:
                     gripper_links=tuple(gripper_links) or (str(tool),) + finger_links,
                     finger_links=finger_links, base_links=_base_links(spec),
                     finger_force=float(_first(spec, ("finger_force", "max_finger_force", "gripper_force"), 40.0)),
-                    gripper=_first(spec, ("gripper",), GripperModel()),
+                    gripper=_first(spec, ("gripper",), GripperModel()), joint_stiffness=_joint_stiffness(spec),
                     max_acceleration=tuple(float(v) for v in _first(spec, ("max_acceleration",), ())))
+
+
+def _joint_stiffness(spec) -> tuple[tuple[str, float], ...]:
+    """(joint, stiffness) pairs: ``spec.joint_stiffness`` as such pairs or a mapping, or one value per
+    ``spec.arm_joints``; () when the spec has none."""
+    value = _first(spec, ("joint_stiffness",), ())
+    if isinstance(value, dict):
+        return tuple((str(k), float(v)) for k, v in value.items())
+    value = tuple(value)
+    if value and isinstance(value[0], (tuple, list)):
+        return tuple((str(k), float(v)) for k, v in value)
+    arm = tuple(_first(spec, ("arm_joints",), ()))
+    if value and len(value) != len(arm):
+        raise RobotBindingError(f"robot spec: joint_stiffness has {len(value)} values for the {len(arm)} arm joints {arm}")
+    return tuple((n, float(v)) for n, v in zip(arm, value))
 
 
 def _base_links(spec) -> tuple[str, ...]:

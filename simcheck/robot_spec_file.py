@@ -13,6 +13,7 @@ A robot spec file holds the fields of ``planners.RobotSpec`` (``urdf`` relative 
     finger_open: 0.04
     finger_closed: 0.0
     gripper: {grip_force: 70, pad_friction: 1.0}   # what the grasp can hold
+    joint_stiffness: [3000, 3000, 3000, 2500, 2500, 2000]   # N*m/rad per arm joint (optional)
 
 ``gripper`` (optional; default the Franka Hand, see ``planners.robot.GripperModel``) bounds the force an
 executed grasp transmits: ``2 * pad_friction * grip_force`` N. Any other key is an error naming it and
@@ -56,7 +57,7 @@ def load_robot_spec(spec: str | None):
     check_document(doc, ROBOT_SPEC_SCHEMA, "robot spec", path, RobotBindingError)
     doc = dict(doc)
     doc["urdf"] = (path.parent / doc["urdf"]).resolve()
-    for key in ("base_joints", "arm_joints", "finger_joints", "gripper_links", "home", "max_acceleration"):
+    for key in ("base_joints", "arm_joints", "finger_joints", "gripper_links", "home", "max_acceleration", "joint_stiffness"):
         if key in doc:
             doc[key] = tuple(doc[key])
     if "ignore_pairs" in doc:

@@ -59,6 +59,8 @@ class Rollout:
             ``PhysicsConfig.grasp_force_window``) of the norm of its force since the previous sample, N;
             0 while not grasped.
         holding_force: the force the robot's gripper holds, N (its ``GripperModel``).
+        object_limits: (2,) lower and upper limit of the executed task joint, rad or m (NaN: none, or a
+            rollout recorded without them).
         robot_q_target: (n, dof) the robot joint positions commanded at that instant (the plan's targets).
         finger_links: the robot's finger links (a subset of ``gripper_links``).
         grasp_turn: (n,) angle, rad, by which the handle has turned in the fingers since the grasp.
@@ -138,6 +140,7 @@ class Rollout:
     robot_joint_units: tuple[str, ...] = ()
     closing: bool = False
     joint_range: float = float("nan")
+    object_limits: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         n = len(self.t)
@@ -148,6 +151,8 @@ class Rollout:
             object.__setattr__(self, "robot_q_target", np.full(np.shape(self.robot_q), np.nan))
         if self.opening_axis is None:
             object.__setattr__(self, "opening_axis", np.full(3, np.nan))
+        if self.object_limits is None:
+            object.__setattr__(self, "object_limits", np.full(2, np.nan))
         for name in ("segment", "robot_q", "object_q", "object_qd", "T_world_handle", "tool_pos", "grasp_point",
                      "planned_tool_pos", "planned_object_q", "link_speed", "link_angular_speed", "grasp_active",
                      "grasp_force", "grasp_turn", "robot_q_target", "finger_q", "finger_contacts",

@@ -21,12 +21,13 @@ from pathlib import Path
 
 import numpy as np
 
-from simcheck.bullet import c_output_logged, link_pose, pb, point_state, pybullet_version
+from simcheck.bullet import (c_output_logged, link_pose, mass_matrix, movable_joints, pb, point_jacobian,
+                             point_state, pybullet_version)
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
 from simcheck.contacts import FLOOR, ContactPoint, excess_penetration, robot_contact_points, scene_link_contact_points
 from simcheck.errors import SceneLoadError, TaskSpecError
 from simcheck.grasp import FingerContacts
-from simcheck.grasp_spring import GraspSpring, spring_force
+from simcheck.grasp_spring import GraspSpring, cartesian_stiffness, spring_force, stable_stiffness
 from simcheck.joint_table import JointInfo
 from simcheck.rendering import render
 from simcheck.robot_binding import SimRobot
@@ -66,6 +67,7 @@ class World:
         with c_output_logged("connecting to PyBullet"):
             self.client = pb.connect(pb.GUI if gui else pb.DIRECT)
         self._grasp: GraspSpring | None = None
+        self._arm_impedance: tuple[list[int], np.ndarray] | None = None    # (Jacobian columns, joint stiffness)
         self._q_target: np.ndarray | None = None
         try:
             self._setup_physics()
@@ -332,30 +334,65 @@ class World:
         return self._robot.links.get(link) in self._robot.gripper_links
 
     # ------------------------------------------------------------------ grasp attachment
-    def attach(self, scene_link: str, max_force: float, stiffness: float, damping: float) -> None:
+    def attach(self, scene_link: str, max_force: float, stiffness, damping: float) -> None:
         """Hold the point of ``scene_link`` where the robot's tool frame origin is now with a spring to the
-        tool (``stiffness`` N/m, ``damping`` N*s/m: the compliance of a real arm under impedance control
-        and of the finger pads), applied as equal and opposite forces every :meth:`step`; no torque. The
-        spring force is capped at ``max_force`` N: above it the handle slides in the fingers (the held
-        point moves along so that the spring stays at the cap; :func:`simcheck.grasp_spring.spring_force`).
+        tool (the compliance of a real arm following a plan under impedance control), applied as equal
+        and opposite forces every :meth:`step`; no torque. ``stiffness``: N/m (an isotropic spring), or a
+        mapping robot joint name -> joint stiffness (N*m/rad, N/m for a prismatic joint) of the arm's
+        joint impedance: the spring is then the tool's Cartesian stiffness under it at the current
+        configuration, recomputed every step (:meth:`tool_stiffness`); joints not named are rigid.
+        ``damping`` N*s/m. The spring force is capped at ``max_force`` N: above it the handle slides in
+        the fingers (the held point moves along so that the spring stays at the cap;
+        :func:`simcheck.grasp_spring.spring_force`).
+
+        The spring is integrated explicitly, once per physics step: its stiffness is capped at the
+        grasped part's smallest effective mass at the held point over the time step squared
+        (:func:`simcheck.grasp_spring.stable_stiffness`; stiffer, a Panda pulling a light microwave door
+        along its stiff direction made it diverge).
 
         While attached, the fingers hold their current opening and do not collide with ``scene_link``:
         the attachment is the grasp, and finger contacts squeezing the same link made the solver fight
         itself. :meth:`detach` restores both."""
         self.detach()
+        c = self.client
         obj_body, obj_idx = self._scene_link_index(scene_link)
         T_w_obj = self.scene_link_pose(scene_link)
         p_tool = self.robot_link_position(self.robot_spec.tool_link)
-        p_local = np.linalg.inv(T_w_obj) @ np.append(p_tool, 1.0)
-        self._grasp = GraspSpring(obj_body, obj_idx, p_local[:3], float(stiffness), float(damping), float(max_force))
+        p_local = (np.linalg.inv(T_w_obj) @ np.append(p_tool, 1.0))[:3]
+        stable = (stable_stiffness(point_jacobian(c, obj_body, obj_idx, p_local), mass_matrix(c, obj_body),
+                                   self.config.time_step) if obj_idx >= 0 and movable_joints(c, obj_body) else np.inf)
+        self._arm_impedance = None
+        if isinstance(stiffness, dict):
+            self._arm_impedance = self._joint_columns(stiffness)
+            K = self._tool_stiffness(*self._arm_impedance)
+        else:
+            K = float(stiffness) * np.eye(3)
+        self._grasp = GraspSpring(obj_body, obj_idx, p_local, K, float(damping), float(max_force), float(stable))
         self._set_finger_collisions(obj_body, obj_idx, enabled=False)
         f = self.finger_q()
         pb.setJointMotorControlArray(self.robot, self._robot.finger_index, pb.POSITION_CONTROL,
                                      targetPositions=list(f), forces=[self.robot_spec.finger_force] * len(f),
-                                     positionGains=[0.2] * len(f), physicsClientId=self.client)
+                                     positionGains=[0.2] * len(f), physicsClientId=c)
+
+    def tool_stiffness(self, joint_stiffness: dict[str, float]) -> np.ndarray:
+        """(3, 3) translational stiffness, N/m, of the robot's tool origin at its current configuration when
+        the joints of ``joint_stiffness`` (name -> N*m/rad or N/m) are held by those springs and every
+        other joint is rigid (:func:`simcheck.grasp_spring.cartesian_stiffness`)."""
+        return self._tool_stiffness(*self._joint_columns(joint_stiffness))
+
+    def _joint_columns(self, joint_stiffness: dict[str, float]) -> tuple[list[int], np.ndarray]:
+        movable = movable_joints(self.client, self.robot)
+        cols = [movable.index(self._robot.joints[n].index) for n in joint_stiffness]
+        return cols, np.array([float(k) for k in joint_stiffness.values()])
+
+    def _tool_stiffness(self, cols: list[int], joint_stiffness: np.ndarray) -> np.ndarray:
+        tool = self._robot.links[self.robot_spec.tool_link]
+        return cartesian_stiffness(point_jacobian(self.client, self.robot, tool, np.zeros(3))[:, cols], joint_stiffness)
 
     def _apply_grasp_spring(self) -> None:
         g, c = self._grasp, self.client
+        if self._arm_impedance is not None:
+            g.stiffness = self._tool_stiffness(*self._arm_impedance)
         p_h, v_h = point_state(c, g.body, g.index, g.p_local)
         tool = self._robot.links[self.robot_spec.tool_link]
         p_t, v_t = point_state(c, self.robot, tool, np.zeros(3))

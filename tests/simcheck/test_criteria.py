@@ -166,13 +166,29 @@ def test_robot_joint_limits_fails_when_a_joint_is_commanded_past_its_limit(good)
     assert not r.passed and r.value == pytest.approx(0.2) and "robot joint y was commanded 0.200" in r.detail
 
 
-def test_grasp_force_fails_above_what_the_gripper_holds(good):
-    ok = grasp_force(good)
-    assert ok.passed and ok.value == pytest.approx(20.0) and ok.threshold == 112.0 and ok.unit == "N"
+def test_grasp_force_fails_above_what_the_gripper_holds_with_its_safety_factor(good):
+    ok = grasp_force(good)                                  # the gripper holds 112 N: 56 N with a factor of 2
+    assert ok.passed and ok.value == pytest.approx(20.0) and ok.threshold == 56.0 and ok.unit == "N"
     f = good.grasp_force.copy()
-    f[np.flatnonzero(good.grasp_active)[5]] = 150.0
+    f[np.flatnonzero(good.grasp_active)[5]] = 80.0          # held without slipping, but without margin
     bad = grasp_force(with_(good, grasp_force=f))
-    assert not bad.passed and bad.margin == pytest.approx(112.0 - 150.0) and "150 N through the grasp" in bad.detail
+    assert not bad.passed and bad.margin == pytest.approx(56.0 - 80.0) and "80 N through the grasp" in bad.detail
+    assert "holds 112 N, 56 N with a safety factor of 2" in bad.detail
+    assert grasp_force(with_(good, grasp_force=f), CriteriaConfig(grasp_safety_factor=1.0)).passed
+
+
+def test_grasp_force_is_not_judged_while_the_part_rests_on_its_end_stop(good):
+    open_ = np.flatnonzero(good.in_segment("open"))
+    f = good.grasp_force.copy()
+    f[open_[-1]] = 150.0                                    # the last opening sample: the drawer is at 0.3 m
+    stopped = with_(good, grasp_force=f, object_limits=np.array([0.0, 0.3]))
+    r = grasp_force(stopped)
+    assert r.passed and r.value == pytest.approx(20.0) and "150 N pulling cabinet1_drawer2_joint against its end stop" in r.detail
+    assert interaction_force(stopped).passed
+    f[open_[len(open_) // 2]] = 150.0                       # half open, far from the stop: judged
+    r = grasp_force(with_(stopped, grasp_force=f))
+    assert not r.passed and r.value == 150.0
+    assert not grasp_force(with_(good, grasp_force=f)).passed          # no limits recorded: every sample judged
 
 
 def test_grasp_force_without_a_grasp_is_not_measured(good):

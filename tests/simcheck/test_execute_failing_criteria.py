@@ -58,7 +58,7 @@ def test_a_pull_beyond_the_gripper_slips_the_handle_out():
     t = _certify(drawer_plan(), robot=weak)
     assert t.status is Outcome.FAILED
     force = t.criterion("grasp_force")
-    assert not force.passed and force.threshold == pytest.approx(2.0) and force.value > 2.0
+    assert not force.passed and force.threshold == pytest.approx(1.0) and force.value > 2.0     # 2 N / safety factor 2
     assert "slid in the fingers" in t.criterion("grasp_held").detail
 
 
@@ -66,7 +66,7 @@ def test_a_wrong_axis_needs_more_than_the_gripper_holds():
     t = _certify(drawer_plan(axis_deg=30.0))
     assert t.status is Outcome.FAILED
     force = t.criterion("grasp_force")
-    assert force.threshold == pytest.approx(GripperModel().holding_force)
+    assert force.threshold == pytest.approx(GripperModel().holding_force / 2.0)
     assert not force.passed and "slid in the fingers" in t.criterion("grasp_held").detail
 
 

@@ -64,6 +64,7 @@ def _robot_doc() -> dict:
     ({"home": "zero"}, r"robot.yaml: field 'home' must be one number per base and arm joint \(m, rad\), got 'zero'"),
     ({"tool_frame": None}, r"robot.yaml: field 'tool_frame' is missing"),
     ({"gripper": {"grip_force": 0}}, r"field 'gripper.grip_force' must be a force in newtons, got 0"),
+    ({"joint_stiffness": [3000, 3000]}, r"robot.yaml: .*joint_stiffness needs one positive number per arm joint"),
 ])
 def test_a_malformed_robot_spec_is_an_error_naming_file_and_field(change, message, tmp_path):
     doc = {**_robot_doc(), **change}
@@ -71,6 +72,17 @@ def test_a_malformed_robot_spec_is_an_error_naming_file_and_field(change, messag
     (tmp_path / "robot.yaml").write_text(yaml.safe_dump(doc))
     with pytest.raises(RobotBindingError, match=message):
         load_robot_spec(str(tmp_path / "robot.yaml"))
+
+
+def test_a_robot_spec_joint_stiffness_reaches_the_simulated_robot(tmp_path):
+    from simcheck.robot_binding import sim_robot_from_spec
+
+    values = [1000.0, 1000.0, 1000.0, 800.0, 800.0, 500.0, 500.0, 400.0][-len(_robot_doc()["arm_joints"]):]
+    doc = {**_robot_doc(), "joint_stiffness": values}
+    (tmp_path / "robot.yaml").write_text(yaml.safe_dump(doc))
+    robot = sim_robot_from_spec(load_robot_spec(str(tmp_path / "robot.yaml")))
+    assert robot.joint_stiffness == tuple(zip(doc["arm_joints"], values))
+    assert ("panda_joint1", 3000.0) in sim_robot_from_spec(load_robot_spec(None)).joint_stiffness
 
 
 def test_the_robot_spec_schema_has_exactly_the_robot_spec_fields():
