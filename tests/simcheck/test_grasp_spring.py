@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from simcheck.grasp_spring import GraspSpring, spring_force
+from simcheck.grasp_spring import GraspSpring, cartesian_stiffness, spring_force, stable_stiffness
 
 
 def _spring(cap=100.0):
@@ -30,3 +30,34 @@ def test_a_cap_reached_by_damping_alone_slides_nothing():
     s = _spring(cap=100.0)
     f, slide_to = spring_force(s, np.zeros(3), np.zeros(3), np.array([0.05, 0, 0]), np.array([10.0, 0, 0]))
     assert np.isclose(np.linalg.norm(f), 100.0) and s.slid and slide_to is None
+
+
+def test_an_anisotropic_spring_pulls_along_k_times_stretch_and_slides_to_the_cap():
+    K = np.diag([1000.0, 4000.0, 9000.0])
+    s = GraspSpring(body=1, index=0, p_local=np.zeros(3), stiffness=K, damping=0.0, cap=100.0)
+    f, slide_to = spring_force(s, np.zeros(3), np.zeros(3), np.array([0.01, 0.01, 0.0]), np.zeros(3))
+    assert np.allclose(f, [10.0, 40.0, 0.0]) and slide_to is None
+    f, slide_to = spring_force(s, np.zeros(3), np.zeros(3), np.array([0.0, 0.05, 0.0]), np.zeros(3))     # 200 N
+    assert np.allclose(f, [0.0, 100.0, 0.0]) and np.allclose(slide_to, [0.0, 0.025, 0.0])
+
+
+def test_stiffness_above_the_stable_bound_is_lowered_to_it_direction_by_direction():
+    K = np.diag([1000.0, 50000.0, 9000.0])
+    s = GraspSpring(body=1, index=0, p_local=np.zeros(3), stiffness=K, damping=0.0, cap=1e6, max_stiffness=20000.0)
+    f, _ = spring_force(s, np.zeros(3), np.zeros(3), np.array([0.001, 0.001, 0.001]), np.zeros(3))
+    assert np.allclose(f, [1.0, 20.0, 9.0])
+
+
+def test_cartesian_stiffness_of_a_two_link_planar_arm():
+    # a point 1 m out along x from joint 1 and 0.5 m from joint 2: each moves it along y
+    J = np.array([[1.0, 0.5]])                               # the point's y over the two joints
+    K = cartesian_stiffness(J, np.array([1000.0, 500.0]))
+    # along y: compliance 1^2/1000 + 0.5^2/500 = 0.0015 m/N -> 666.7 N/m
+    assert np.allclose(K, [[1.0 / 0.0015]])
+
+
+def test_the_stable_stiffness_is_the_effective_mass_over_the_time_step_squared():
+    # a door of inertia 0.5 kg m^2 about its hinge, the point 0.5 m out: effective mass 2 kg along the tangent
+    J = np.array([[0.0], [0.5], [0.0]])
+    assert np.isclose(stable_stiffness(J, np.array([[0.5]]), 0.01), 2.0 / 1e-4)
+    assert stable_stiffness(np.zeros((3, 1)), np.array([[0.5]]), 0.01) == np.inf
