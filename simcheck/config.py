@@ -216,7 +216,8 @@ CRITERIA_UNITS = {"opened_fraction": "", "opened_overshoot": "", "settled_linear
                   "joint_limit_tolerance": "rad or m", "plan_penetration_tolerance": "m",
                   "recheck_resolution": "rad or m", "max_waypoint_gap": "rad or m", "acceleration_window": "s",
                   "articulation_tolerance": "m or rad", "rest_contact_slack": "m",
-                  "closed_range_fraction": "", "closed_gap_prismatic": "m", "closed_gap_revolute": "rad"}
+                  "closed_range_fraction": "", "closed_gap_prismatic": "m", "closed_gap_revolute": "rad",
+                  "grasp_safety_factor": "", "end_stop_tolerance": "m or rad"}
 
 DEFAULT_PHYSICS = PhysicsConfig()
 DEFAULT_CRITERIA = CriteriaConfig()

@@ -56,8 +56,8 @@ def test_cartesian_stiffness_of_a_two_link_planar_arm():
     assert np.allclose(K, [[1.0 / 0.0015]])
 
 
-def test_the_stable_stiffness_is_the_effective_mass_over_the_time_step_squared():
+def test_the_stable_stiffness_is_the_effective_mass_over_twice_the_time_step_squared():
     # a door of inertia 0.5 kg m^2 about its hinge, the point 0.5 m out: effective mass 2 kg along the tangent
     J = np.array([[0.0], [0.5], [0.0]])
-    assert np.isclose(stable_stiffness(J, np.array([[0.5]]), 0.01), 2.0 / 1e-4)
+    assert np.isclose(stable_stiffness(J, np.array([[0.5]]), 0.01), 2.0 / 2e-4)
     assert stable_stiffness(np.zeros((3, 1)), np.array([[0.5]]), 0.01) == np.inf
