@@ -278,7 +278,7 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
         side = _seen_side(normals, _facing(normals, seen_mask, prim.T_world_part[:3, k], config),
                           prim.T_world_part[:3, k])
         lo, hi = -prim.size / 2, prim.size / 2
-        if side is None or prim.size[k] >= config.front_thickness or not _vertical_panel(
+        if side is None or prim.size[k] > config.front_thickness + config.noise_floor or not _vertical_panel(
                 lo, hi, k, prim.T_world_part[:3, :3], config):
             # a slab whose edges show it notably thinner than its box (noise just under the floor): its
             # thickness is measured; an untilted box keeps its orientation and in-plane extents
