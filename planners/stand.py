@@ -39,14 +39,13 @@ log = logging.getLogger(__name__)
 class StandPose:
     """A ranked stand pose.
 
-    Attributes
-    ----------
-    base : (3,) float, base (x m, y m, yaw rad).
-    q_grasp : (dof,) float, configuration at the grasp (task joint at its start value).
-    grasp_index : which grasp candidate (index into ``HandleGrasp.T_link_grasps``).
-    path_share : share of the path samples reached with the base fixed (1.0 = complete).
-    reach_margin : smallest normalised arm joint-limit margin along the reached samples (0..0.5).
-    clearance : metres between the non-gripper robot links and the scene at the grasp.
+    Attributes:
+        base: (3,) float, base (x m, y m, yaw rad).
+        q_grasp: (dof,) float, configuration at the grasp (task joint at its start value).
+        grasp_index: which grasp candidate (index into ``HandleGrasp.T_link_grasps``).
+        path_share: share of the path samples reached with the base fixed (1.0 = complete).
+        reach_margin: smallest normalised arm joint-limit margin along the reached samples (0..0.5).
+        clearance: metres between the non-gripper robot links and the scene at the grasp.
     """
 
     base: np.ndarray
