@@ -274,7 +274,9 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
             sigma = _mad_sigma(r)
             seen_mask = seen_mask | (face == (f ^ 1))
     if sigma < config.noise_floor:
-        # a clean scan: nothing to correct, but a front seen only by its face is a board, not a film
+        # a clean scan: nothing to correct, but a front seen only by its face is a board, not a film; a
+        # panel already a board's thickness (within the noise floor) is such a front too, so a second pass
+        # (after ICP) keeps the board behind its face instead of re-measuring it as a slab
         side = _seen_side(normals, _facing(normals, seen_mask, prim.T_world_part[:3, k], config),
                           prim.T_world_part[:3, k])
         lo, hi = -prim.size / 2, prim.size / 2
