@@ -29,7 +29,7 @@ from scenes.outcome import Outcome
 from simcheck.certificate import Certificate, TaskCertificate, software_versions
 from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, PhysicsConfig
 from simcheck.criteria import CriterionResult, plan_collision_free, plan_found, rollout_criteria
-from simcheck.errors import RobotBindingError
+from simcheck.errors import RobotBindingError, SimcheckInputError
 from simcheck.estimate_diff import joint_differences, joint_mapping
 from simcheck.execute import execute_task, handle_link_for
 from simcheck.keyframes import KeyFrameCamera
@@ -313,7 +313,8 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
             amounts=None, criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
             planner_config: PlannerConfig = PlannerConfig(), images: bool = True, video: bool = False,
             gui: bool = False, carry_state: bool = False, robust: int | None = None, min_success: float = 0.9,
-            replay_sample: int | None = None, save_plan: bool | str = False, files=None, froms=None) -> Certificate:
+            replay_sample: int | None = None, save_plan: bool | str = False, files=None, froms=None,
+            spreads=None, robust_engine: str = "auto", address: str | None = None) -> Certificate:
     """Certify each task on ``scene``; returns the :class:`Certificate` (written to ``out`` if given).
 
     Args:
@@ -337,6 +338,10 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         robust: execute each task's plan in this many worlds sampled from the scan's uncertainty, physics
             ranges and robot errors too; certified only if the 95 % lower bound on the success rate reaches
             ``min_success`` (:mod:`simcheck.robust`). ``replay_sample``: run only that sample.
+        spreads: with ``robust``, the physics / robot / default joint spreads: a YAML or JSON file
+            (:mod:`simcheck.spreads_file`) or a ``RobustSpreads``; None: the defaults.
+        robust_engine, address: with ``robust``, where the sampled executions run: "processes", "ray" (the
+            Ray at ``address``, else a local one) or "auto" (:mod:`simcheck.robust_engine`).
         save_plan: write each planned task's plan, timed as the executor runs it, to
             ``out/plans/<joint>.plan.json`` (``partscene.plan/1``; replay it with :func:`simcheck.certify_plan`);
             a string is the robot spec recorded in the file (True: "default").
@@ -358,13 +363,16 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
                        amounts=amounts, criteria=criteria, physics=physics, planner_config=planner_config,
                        images=images, video=video, gui=gui, carry_state=carry_state, robust=robust,
                        min_success=min_success, replay_sample=replay_sample, save_plan=save_plan,
-                       files=files)
+                       files=files, spreads=spreads, robust_engine=robust_engine, address=address)
         if not untested:
             return cert
         cert = dataclasses.replace(cert, untested=untested)
         return dataclasses.replace(cert, path=cert.write(cert.path.parent)) if cert.path is not None else cert
     if froms:
         tasks = parse_tasks(tasks, None, froms)
+    if (spreads is not None or robust_engine != "auto" or address is not None) and robust is None:
+        raise SimcheckInputError("spreads / robust_engine / address: they set how --robust samples and runs its "
+                                 "worlds; give --robust N too")
     if robust is not None or replay_sample is not None:
         closing = [str(t) for t in parse_tasks(tasks) if t.close]
         if closing:
@@ -375,7 +383,8 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
                                 robust=robust, min_success=min_success,
                                 replay_sample=replay_sample, against=against, seed=seed, out=out, robot=robot,
                                 planner=planner, amounts=amounts, criteria=criteria, physics=physics,
-                                planner_config=planner_config, images=images, video=video, gui=gui)
+                                planner_config=planner_config, images=images, video=video, gui=gui,
+                                spreads=spreads, engine=robust_engine, address=address)
     t0 = time.perf_counter()
     scene = Path(scene)
     against = Path(against) if against is not None else None

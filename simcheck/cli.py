@@ -2,9 +2,11 @@
 
     simcheck certify SCENE.urdf (--task open-drawer:JOINT --task close-door:JOINT ... | --all-movable)
                      [--amount A ...] [--from OPENING ...] [--against REFERENCE.urdf] [--out DIR] [--seed S] [--gui] [--video]
-                     [--robot SPEC] [--robust N [--min-success P] [--replay-sample I]] [--json]
+                     [--robot SPEC] [--robust N [--min-success P] [--replay-sample I] [--spreads FILE]
+                                 [--robust-engine auto|processes|ray] [--address ADDR]] [--json]
                      [--save-plan]
     simcheck certify-plan SCENE.urdf PLAN.json [--against REFERENCE.urdf] [--out DIR] [--robust N ...] [--json]
+    simcheck spreads                  (prints the default spreads of --robust: a --spreads FILE to start from)
     simcheck run SCENARIO.yaml [--out DIR] [--seed S] [--gui] [--video] [--json]
     simcheck batch MANIFEST --out DIR [--workers N] [--address ADDR] ...   (simcheck.batching.command)
 
@@ -51,6 +53,14 @@ def _parser() -> argparse.ArgumentParser:
         rb.add_argument("--min-success", type=float, default=0.9, metavar="P",
                         help="certify when, with 95%% confidence, at least P of such worlds succeed (default 0.9)")
         rb.add_argument("--replay-sample", type=int, default=None, metavar="I", help="execute sample I alone")
+        rb.add_argument("--spreads", default=None, metavar="FILE",
+                        help="physics / robot / default joint spreads (YAML or JSON; `simcheck spreads` prints the "
+                             "defaults, every key optional)")
+        rb.add_argument("--robust-engine", choices=("auto", "processes", "ray"), default="auto",
+                        help="where the sampled worlds run: worker processes, Ray, or auto (Ray when connected or "
+                             "--address / RAY_ADDRESS is given, else processes)")
+        rb.add_argument("--address", default=None, metavar="ADDR",
+                        help="with --robust-engine ray/auto: a Ray cluster to run the samples on (auto, ray://host:10001)")
 
     c = sub.add_parser("certify", help="certify tasks on a scene URDF", parents=[verbosity])
     c.add_argument("scene", help="scene URDF to plan on (an estimate or a truth)")
@@ -78,6 +88,8 @@ def _parser() -> argparse.ArgumentParser:
     g.add_argument("--against", default=None, help="reference URDF to execute on instead (joints matched by name)")
     robust_options(g)
     common(g)
+    sub.add_parser("spreads", help="print the default spreads of --robust (a --spreads FILE to start from)",
+                   parents=[verbosity])
     r = sub.add_parser("run", help="run a scenario YAML (tasks in sequence, world state carried over)",
                        parents=[verbosity])
     r.add_argument("scenario")
@@ -96,6 +108,10 @@ def main(argv: list[str] | None = None) -> int:
     if args.command == "batch":
         from simcheck.batching.command import run_batch
         return run_batch(args)
+    if args.command == "spreads":
+        from simcheck.spreads_file import spreads_yaml
+        print(spreads_yaml(), end="")
+        return 0
     from scenes.outcome import Outcome, exit_code, internal_error, interrupted
     from scenes.description import InputError
 
@@ -111,12 +127,14 @@ def main(argv: list[str] | None = None) -> int:
         from simcheck.scenario import load_scenario
 
         outputs = {"images": not args.no_images, "video": args.video}
+        robust_run = ({"spreads": args.spreads, "robust_engine": args.robust_engine, "address": args.address}
+                      if args.command != "run" else {})
         if args.command == "certify":
             if args.all_movable and args.task:
                 raise SimcheckInputError("give --task or --all-movable, not both")
             robot = load_robot_spec(args.robot)
             spec_file = args.robot if args.robot not in (None, "", "default") else None
-            inputs = {"scene": args.scene, "against": args.against, "robot_spec": spec_file}
+            inputs = {"scene": args.scene, "against": args.against, "robot_spec": spec_file, "spreads": args.spreads}
             settings = {"tasks": args.task, "all_movable": args.all_movable, "amounts": args.amount, "froms": args.froms,
                         "seed": args.seed or 0, "robust": args.robust, "min_success": args.min_success,
                         "replay_sample": args.replay_sample, "save_plan": args.save_plan, **outputs}
@@ -128,17 +146,19 @@ def main(argv: list[str] | None = None) -> int:
                                min_success=args.min_success, replay_sample=args.replay_sample,
                                save_plan=(args.robot if args.robot == "default" else str(Path(args.robot).resolve()))
                                if args.save_plan else False,
-                               files={"robot_spec": spec_file} if spec_file else None)
+                               files={k: v for k, v in (("robot_spec", spec_file), ("spreads", args.spreads)) if v}
+                               or None, **robust_run)
         elif args.command == "certify-plan":
             from simcheck.given_plan import certify_plan
-            inputs = {"scene": args.scene, "plan": args.plan, "against": args.against}
+            inputs = {"scene": args.scene, "plan": args.plan, "against": args.against, "spreads": args.spreads}
             settings = {"seed": args.seed or 0, "robust": args.robust, "min_success": args.min_success,
                         "replay_sample": args.replay_sample, **outputs}
             with output_folder(args.out, "simcheck certify-plan", inputs=inputs, settings=settings,
                                overwrite=args.overwrite, verdict="certificate.json") as staging:
                 cert = certify_plan(args.scene, args.plan, against=args.against, out=staging, seed=args.seed or 0,
                                     images=not args.no_images, video=args.video, gui=args.gui, robust=args.robust,
-                                    min_success=args.min_success, replay_sample=args.replay_sample)
+                                    min_success=args.min_success, replay_sample=args.replay_sample,
+                                    files={"spreads": args.spreads} if args.spreads else None, **robust_run)
         else:
             sc = load_scenario(args.scenario)
             inputs = {"scenario": args.scenario, "scene": sc.scene, "against": sc.against,

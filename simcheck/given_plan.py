@@ -204,7 +204,8 @@ def given_planner(plan, robot, scene):
 def certify_plan(scene, plan, *, against=None, out=None, robot=None, seed: int = 0, robust: int | None = None,
                  min_success: float = 0.9, replay_sample: int | None = None,
                  criteria: CriteriaConfig = DEFAULT_CRITERIA, physics: PhysicsConfig = DEFAULT_PHYSICS,
-                 images: bool = True, video: bool = False, gui: bool = False, files=None):
+                 images: bool = True, video: bool = False, gui: bool = False, files=None, spreads=None,
+                 robust_engine: str = "auto", address: str | None = None):
     """Certify the given ``plan`` (a plan file path, or a :class:`GivenPlan` from
     :func:`simcheck.plan_file.plan_from_arrays`) on ``scene``; returns the :class:`Certificate`, its task the
     plan's expectation (written to ``out`` if given).
@@ -212,8 +213,8 @@ def certify_plan(scene, plan, *, against=None, out=None, robot=None, seed: int =
     Args:
         against: a reference URDF to execute on instead of ``scene``.
         robot: a planners.RobotSpec; default: the plan's ``robot`` ("default" or a robot spec file).
-        seed, robust, min_success, replay_sample: as for :func:`simcheck.certify` (the plan executed in
-            ``robust`` worlds sampled with ``seed``).
+        seed, robust, min_success, replay_sample, spreads, robust_engine, address: as for
+            :func:`simcheck.certify` (the plan executed in ``robust`` worlds sampled with ``seed``).
         files: more files the run was judged on, by role; the plan file's sha256 is recorded as "plan".
 
     Raises:
@@ -232,7 +233,7 @@ def certify_plan(scene, plan, *, against=None, out=None, robot=None, seed: int =
     return certify(scene, tasks, against=against, out=out, robot=robot, planner=planner, seed=seed, criteria=criteria,
                    carry_state=len(tasks) > 1,
                    physics=physics, images=images, video=video, gui=gui, robust=robust, min_success=min_success,
-                   replay_sample=replay_sample,
+                   replay_sample=replay_sample, spreads=spreads, robust_engine=robust_engine, address=address,
                    files={"plan": None if isinstance(plan, GivenPlan) else plan, **(files or {})})
 
 

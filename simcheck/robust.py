@@ -1,10 +1,12 @@
 """Robust certification (``simcheck certify ... --robust N``): plan once on the estimate, then execute that
-plan in N sampled worlds consistent with the scan, each in its own worker process with a fresh PyBullet
-world, and certify only when the one-sided 95 % Clopper–Pearson lower bound on the success rate reaches
+plan in N sampled worlds consistent with the scan, each with a fresh PyBullet world in a worker process or
+a Ray task (:mod:`simcheck.robust_engine`), and certify only when the one-sided 95 % Clopper–Pearson lower bound on the success rate reaches
 ``min_success``.
 
 * The nominal run is :func:`simcheck.certification.certify` itself (plan, independent re-check, execution
   on the estimate or on ``against``); its planner is wrapped to keep the plan.
+* The spreads: recon's per-joint uncertainty (graph.json), the physics ranges and robot errors of
+  ``spreads`` (defaults, or a ``--spreads FILE``: :mod:`simcheck.spreads_file`).
 * Sample i is :func:`simcheck.perturbations.sample_perturbation` (seed, i) written as a URDF by
   :mod:`simcheck.perturbed_scene` (from the estimate; with ``against``, from the reference, physics ranges
   only), executed with the plan (the arm's position gain scaled by the sample's tracking factor; with the
@@ -20,11 +22,8 @@ from __future__ import annotations
 
 import dataclasses
 import logging
-import os
 import tempfile
 import time
-from concurrent.futures import ProcessPoolExecutor
-from multiprocessing import get_context
 from pathlib import Path
 
 import numpy as np
@@ -35,8 +34,9 @@ from scenes.outcome import Outcome
 from simcheck.perturbations import Perturbation, sample_perturbation
 from simcheck.perturbed_scene import base_error_inverse, write_perturbed_scene
 from simcheck.robust_correction import guarded_plan
-from simcheck.robust_spreads import (DEFAULT_PHYSICS_RANGES, DEFAULT_ROBOT_ERRORS, JointSpreads, check_robust_args,
-                                     joint_spreads_for, spreads_dict)
+from simcheck.robust_engine import choose_engine, run_samples
+from simcheck.robust_spreads import JointSpreads, check_robust_args, joint_spreads_for, spreads_dict
+from simcheck.spreads_file import load_spreads
 from simcheck.robust_verdict import CONFIDENCE, SampleResult, robust_block, robust_outcome
 from simcheck.scene_joints import read_scene_joints
 
@@ -66,12 +66,13 @@ def _pivot_xy(plan) -> tuple[float, float]:
     return float(q[0, 0]), float(q[0, 1])
 
 
-def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics, criteria, pivot, workdir: str,
-               out: str | None = None, images: bool = False, video: bool = False, opening_type: str = "",
-               opening_axis=None) -> SampleResult:
+def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics, criteria, pivot,
+               workdir: str | None = None, out: str | None = None, images: bool = False, video: bool = False,
+               opening_type: str = "", opening_axis=None) -> SampleResult:
     """Execute ``plan`` in the world of perturbation ``p`` (built from scene ``src``) and judge it.
 
-    Runs in a worker process (the world is created and closed here). ``out``: a folder for the rollout /
+    Runs in a worker process (the world is created and closed here). ``workdir``: where the sampled world's
+    URDF is written (None: a temporary folder of this process, removed after). ``out``: a folder for the rollout /
     images of a replayed sample. ``opening_type``, ``opening_axis`` (3,): the planned joint's type and world
     axis toward which it opens (the estimate's, as plain ``certify`` measures the opening; turned with the
     sampled world's scene by its base error); None: the joint's own signed change. Returns the sample's
@@ -81,6 +82,10 @@ def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics
     from simcheck.execute import execute_task
     from simcheck.world import World
 
+    if workdir is None:
+        with tempfile.TemporaryDirectory(prefix="partscene_sample_") as tmp:
+            return run_sample(src, p, plan, requested, robot, physics, criteria, pivot, tmp, out, images, video,
+                              opening_type, opening_axis)
     urdf = write_perturbed_scene(src, p, Path(workdir) / f"sample{p.index}.urdf", pivot)
     if p.reperception is not None:
         plan = guarded_plan(plan, p.base_error, p.reperception, pivot, p.handle_shift)
@@ -112,27 +117,21 @@ def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics
     return SampleResult(p, Outcome.FAILED if failed else Outcome.CERTIFIED, reason, {c.name: c.margin for c in crit})
 
 
-def _context():
-    """Worker processes forked where the platform can (no re-import, no ``__main__`` guard needed in a
-    caller's script); each builds its own PyBullet client. Spawned elsewhere."""
-    import multiprocessing
-
-    return get_context("fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn")
-
-
-def _run_sample_args(args) -> SampleResult:
-    return run_sample(*args)
-
-
 def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, replay_sample: int | None,
                      against, seed: int, out, robot, planner, amounts, criteria, physics, planner_config,
-                     images: bool, video: bool, gui: bool, workers: int | None = None):
+                     images: bool, video: bool, gui: bool, workers: int | None = None, spreads=None,
+                     engine: str = "auto", address: str | None = None):
     """:func:`simcheck.certification.certify` with ``robust`` sampled worlds per task (module docstring).
 
-    certify : the plain certify function (called once, for the nominal run). Raises SimcheckInputError
-    naming ``robust`` / ``min_success`` / ``replay_sample`` or a graph.json uncertainty field.
+    certify : the plain certify function (called once, for the nominal run). spreads : the physics, robot
+    and default joint spreads (None: the defaults; a YAML/JSON file or a ``RobustSpreads``:
+    :func:`simcheck.spreads_file.load_spreads`). engine, workers, address : where the samples run
+    (:mod:`simcheck.robust_engine`). Raises SimcheckInputError naming ``robust`` / ``min_success`` /
+    ``replay_sample`` / ``engine``, a spreads file's field or a graph.json uncertainty field.
     """
     check_robust_args(robust, min_success)
+    spreads_cfg = load_spreads(spreads)
+    engine = choose_engine(engine, address)
     if replay_sample is not None and not (isinstance(replay_sample, int) and 0 <= replay_sample < robust):
         from simcheck.errors import SimcheckInputError
         raise SimcheckInputError(f"replay_sample: must be an integer in [0, {robust}), got {replay_sample!r}")
@@ -144,7 +143,7 @@ def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, 
     for task in parse_tasks(tasks, amounts):             # validate graph.json before any simulation
         sj = read_scene_joints(scene).get(task.joint)
         if sj is not None and sj.type in ("prismatic", "revolute") and against is None:
-            spreads[task.joint] = joint_spreads_for(scene, task.joint, sj.type)
+            spreads[task.joint] = joint_spreads_for(scene, task.joint, sj.type, spreads_cfg.joint_defaults)
     if planner is None:
         from simcheck.certification import planners_planner
         if robot is None:
@@ -168,7 +167,7 @@ def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, 
         jspreads, centre = spreads.get(tc.joint, (JointSpreads(0.0, 0.0, 0.0, "reference (physics only)"), None))
         indices = [replay_sample] if replay_sample is not None else list(range(robust))
         perts = [sample_perturbation(i, seed, tc.joint, ref.type, ref.axis_world, ref.origin_world, ref.upper, centre,
-                                     jspreads, DEFAULT_PHYSICS_RANGES, DEFAULT_ROBOT_ERRORS, mode) for i in indices]
+                                     jspreads, spreads_cfg.physics, spreads_cfg.robot, mode) for i in indices]
         # measured as plain certify does (with --against too): the estimate's request along its opening
         # direction in the world, its axis reversed for a negative amount (a reference of the other sign
         # convention is matched by direction, not by the sign of its joint value)
@@ -185,11 +184,11 @@ def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, 
                 results = [run_sample(*args[0][:9], out=None if out is None else str(out), images=images,
                                       video=video, opening_type=opening_type, opening_axis=opening_axis)]
             else:
-                n_workers = max(1, min(len(args), workers or os.cpu_count() or 1))
-                with ProcessPoolExecutor(n_workers, mp_context=_context()) as pool:
-                    results = list(pool.map(_run_sample_args, args))
-        extra = {"min_success": min_success, "mode": mode, "spreads": spreads_dict(jspreads, DEFAULT_PHYSICS_RANGES,
-                                                                                   DEFAULT_ROBOT_ERRORS),
+                if engine == "ray":        # a Ray task writes its world in a folder of its own node
+                    args = [(*a[:8], None, *a[9:]) for a in args]
+                results = run_samples(run_sample, args, engine, workers, address)
+        extra = {"min_success": min_success, "mode": mode, "engine": engine,
+                 "spreads": spreads_dict(jspreads, spreads_cfg.physics, spreads_cfg.robot, spreads_cfg.source),
                  "seconds": time.perf_counter() - t1}
         if replay_sample is not None:
             extra["replayed_sample"] = replay_sample

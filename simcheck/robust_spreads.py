@@ -24,8 +24,8 @@ from pathlib import Path
 
 from simcheck.errors import SimcheckInputError
 
-__all__ = ["JointSpreads", "PhysicsRanges", "RobotErrors", "DEFAULT_JOINT_SPREADS", "DEFAULT_PHYSICS_RANGES",
-           "DEFAULT_ROBOT_ERRORS", "JointCentre", "joint_spreads_for", "check_robust_args", "spreads_dict"]
+__all__ = ["JointSpreads", "PhysicsRanges", "RobotErrors", "RobustSpreads", "DEFAULT_JOINT_SPREADS",
+           "DEFAULT_PHYSICS_RANGES", "DEFAULT_ROBOT_ERRORS", "DEFAULT_SPREADS", "JointCentre", "joint_spreads_for", "check_robust_args", "spreads_dict"]
 
 
 @dataclass(frozen=True)
@@ -102,6 +102,24 @@ DEFAULT_ROBOT_ERRORS = RobotErrors()
 
 
 @dataclass(frozen=True)
+class RobustSpreads:
+    """Everything a robust certificate samples from besides recon's per-joint uncertainty.
+
+    physics, robot : the ranges and errors above; joint_defaults : the task joint's spreads without a
+    graph.json, per "prismatic" / "revolute"; source : "default" or the spreads file they were read from
+    (``--spreads FILE``, :mod:`simcheck.spreads_file`).
+    """
+
+    physics: PhysicsRanges
+    robot: RobotErrors
+    joint_defaults: dict
+    source: str = "default"
+
+
+DEFAULT_SPREADS = RobustSpreads(DEFAULT_PHYSICS_RANGES, DEFAULT_ROBOT_ERRORS, DEFAULT_JOINT_SPREADS)
+
+
+@dataclass(frozen=True)
 class JointCentre:
     """Where the worlds' joint is centred (the value the scan supports), world frame at q = 0.
 
@@ -132,15 +150,16 @@ def _spread(u: dict, key: str, where: str) -> float:
     return float(v)
 
 
-def joint_spreads_for(scene_urdf: str | Path, joint: str, joint_type: str) -> tuple[JointSpreads, JointCentre | None]:
+def joint_spreads_for(scene_urdf: str | Path, joint: str, joint_type: str, defaults: dict = DEFAULT_JOINT_SPREADS
+                      ) -> tuple[JointSpreads, JointCentre | None]:
     """The task joint's spreads and scan-supported centre from ``graph.json`` beside ``scene_urdf``.
 
-    Returns (DEFAULT_JOINT_SPREADS[joint_type], None) when there is no graph.json or it has no such joint
-    or no uncertainty for it. Raises :class:`SimcheckInputError` naming the file, joint and field on an
+    Returns (defaults[joint_type], None) (default :data:`DEFAULT_JOINT_SPREADS`) when there is no graph.json
+    or it has no such joint or no uncertainty for it. Raises :class:`SimcheckInputError` naming the file, joint and field on an
     unreadable graph.json or an uncertainty block with a missing, NaN or negative spread.
     """
     path = Path(scene_urdf).parent / "graph.json"
-    default = DEFAULT_JOINT_SPREADS["prismatic" if joint_type == "prismatic" else "revolute"]
+    default = defaults["prismatic" if joint_type == "prismatic" else "revolute"]
     if not path.is_file():
         return default, None
     try:
@@ -169,6 +188,7 @@ def joint_spreads_for(scene_urdf: str | Path, joint: str, joint_type: str) -> tu
     return default, None
 
 
-def spreads_dict(joint: JointSpreads, physics: PhysicsRanges, robot: RobotErrors) -> dict:
-    """The spreads a robust certificate was sampled with, as JSON data."""
-    return {"joint": asdict(joint), "physics": asdict(physics), "robot": asdict(robot)}
+def spreads_dict(joint: JointSpreads, physics: PhysicsRanges, robot: RobotErrors, source: str = "default") -> dict:
+    """The spreads a robust certificate was sampled with, as JSON data (``source``: "default" or the spreads
+    file of the physics and robot spreads)."""
+    return {"joint": asdict(joint), "physics": asdict(physics), "robot": asdict(robot), "source": source}

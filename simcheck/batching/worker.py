@@ -153,7 +153,7 @@ def certify_job(job: dict) -> dict:
                                         min_success=job["min_success"], replay_sample=None, planner=None,
                                         criteria=defaults["criteria"].default, physics=defaults["physics"].default,
                                         planner_config=defaults["planner_config"].default, video=False, gui=False,
-                                        workers=1, **kwargs)
+                                        workers=1, engine="processes", **kwargs)
         t = cert.tasks[0]
         from scenes.outcome import Outcome
 

@@ -4,6 +4,7 @@ bad input and exits 2."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import shutil
 import subprocess
@@ -12,17 +13,18 @@ from pathlib import Path
 
 import pytest
 
-import simcheck.robust
 from scenes.outcome import Outcome
 from simcheck.certificate import Certificate
 from simcheck.certification import certify
 from simcheck.estimate_faults import shift_hinge
-from simcheck.robust_spreads import RobotErrors
+from simcheck.robust_spreads import DEFAULT_SPREADS, RobotErrors
 from simcheck.scene_joints import read_scene_joints
 
 DATA = Path(__file__).parent / "data"
 DOOR = "cabinet1_door4_joint"
 N = 6
+NO_ROBOT_ERRORS = dataclasses.replace(DEFAULT_SPREADS, robot=RobotErrors(0.0, 0.0, 0.0, (1.0, 1.0), guarded_approach=False))
+"""Robot errors off: the joint and physics spreads decide."""
 
 
 def _with_graph(folder: Path, urdf: Path) -> Path:
@@ -42,19 +44,14 @@ def _with_graph(folder: Path, urdf: Path) -> Path:
 def runs(tmp_path_factory):
     """The unmodified door and the one whose hinge is 3 cm off graph.json's, each certified with N
     samples (robot errors off: the joint and physics spreads decide)."""
-    mp = pytest.MonkeyPatch()
-    mp.setattr(simcheck.robust, "DEFAULT_ROBOT_ERRORS", RobotErrors(0.0, 0.0, 0.0, (1.0, 1.0), guarded_approach=False))
     tmp = tmp_path_factory.mktemp("robust")
     good = _with_graph(tmp / "good", DATA / "cabinet.urdf")
     off = tmp / "off"
     off.mkdir()
     shutil.copy(good.parent / "graph.json", off / "graph.json")
     shift_hinge(good, DOOR, off / "scene.urdf", sideways=0.03)
-    try:
-        yield {name: certify(path, [f"open-door:{DOOR}"], robust=N, images=False, out=tmp / f"out_{name}")
-               for name, path in (("good", good), ("off", off / "scene.urdf"))}
-    finally:
-        mp.undo()
+    return {name: certify(path, [f"open-door:{DOOR}"], robust=N, images=False, out=tmp / f"out_{name}",
+                          spreads=NO_ROBOT_ERRORS) for name, path in (("good", good), ("off", off / "scene.urdf"))}
 
 
 def test_hinge_three_cm_off_gets_fewer_successes(runs):
@@ -81,12 +78,12 @@ def test_certificate_carries_the_robust_block_and_reads_back(runs):
     assert "with 95% confidence" in runs["good"][DOOR].reason
 
 
-def test_a_failing_sample_replays_alone_with_the_same_outcome(runs, tmp_path, monkeypatch):
-    monkeypatch.setattr(simcheck.robust, "DEFAULT_ROBOT_ERRORS", RobotErrors(0.0, 0.0, 0.0, (1.0, 1.0), guarded_approach=False))
+def test_a_failing_sample_replays_alone_with_the_same_outcome(runs, tmp_path):
     block = runs["off"][DOOR].robust
     fail = block["failures"][0]
     scene = Path(runs["off"].scene)
-    cert = certify(scene, [f"open-door:{DOOR}"], robust=N, replay_sample=fail["sample"], images=False, out=tmp_path)
+    cert = certify(scene, [f"open-door:{DOOR}"], robust=N, replay_sample=fail["sample"], images=False, out=tmp_path,
+                   spreads=NO_ROBOT_ERRORS)
     task = cert[DOOR]
     assert task.robust["replayed_sample"] == fail["sample"] and task.robust["samples"] == 1
     assert task.robust["perturbations"][0] == fail["perturbation"]
