@@ -27,10 +27,14 @@ def _parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", required=True)
     b = sub.add_parser("build", help="scan + labels -> scene.urdf, scene.srdf, graph.json, preview.png (+ scene.xml)",
                        parents=[common])
-    b.add_argument("scan", type=Path, help="scan.ply or scan.npz (metres, z up unless --level-floor)")
+    b.add_argument("scan", type=Path, help="scan.ply or scan.npz (metres, z up unless --level-floor); a scan "
+                   "upside down, not z-up or not in metres exits 2")
     b.add_argument("--labels", type=Path, required=True, help="labels.json")
     add_output_arguments(b, "scene.urdf, scene.srdf, graph.json, preview.png, scene.xml")
-    b.add_argument("--level-floor", action="store_true", help="find the floor and the up direction first")
+    b.add_argument("--level-floor", action="store_true",
+                   help="write the scene levelled on the scan's floor (floor z = 0, z up; rotated by the floor's "
+                        "measured tilt only) instead of in the scan's frame; also takes scans that are upside "
+                        "down or not z-up")
     b.add_argument("--seed", type=int, default=0)
     b.add_argument("--min-part-points", type=int, default=None, metavar="N",
                    help=f"skip parts with fewer points (default {ScanConfig.min_part_points}; handles and knobs "

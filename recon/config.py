@@ -56,12 +56,27 @@ class ScanConfig:
 
 @dataclass(frozen=True)
 class LevelingConfig:
-    """Finding the floor of a scan in a camera frame (leveling.py)."""
+    """The floor of a scan, its frame and its scale (leveling.py, frame_checks.py)."""
 
     floor_ransac_distance: float = 0.02
     """RANSAC inlier distance (m) of the floor plane."""
-    floor_candidates: int = 4
-    """Largest planes tried as the floor."""
+    floor_candidates: int = 6
+    """Largest planes of the background tried as the floor."""
+    floor_min_points: int = 200
+    """A floor is a background plane of at least this many points; with fewer the frame's z = 0 is
+    assumed, with a warning."""
+    floor_max_points: int = 30000
+    """The background is subsampled to this many points for the floor's RANSAC."""
+    max_floor_tilt_deg: float = 10.0
+    """A floor more than this (deg) off the scan's xy plane: the scan is refused as not z-up or upside
+    down, unless ``level_floor`` (which rotates it level)."""
+    min_floor_tilt_deg: float = 0.25
+    """A floor tilted less than this (deg) is taken as level (normal +z): below what a noisy floor
+    resolves (the realistic scan of kitchen 0, level, measures 0.05 deg), and a hinge tilted by such
+    noise swings a door at rest in physics."""
+    floor_offset_warning: float = 0.01
+    """An output in the scan's frame whose floor is more than this (m) off z = 0, or tilted, is written
+    with a warning (planners and simcheck put the robot and the ground plane on z = 0)."""
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,14 @@ Layout (format ``partscene.graph/1``; lengths in metres, angles in radians, worl
                                 "parent_plane", "child_plane"}]}],
      "supports": [[object id, supporter id | null]], "proximal": [[a, b]],
      "walls": [{"name": "wall0", "size": [thickness, length, height], "T_world_wall": 4x4, "n_points"}],
+     "floor": {"height_m", "tilt_deg", "normal", "n_points"}, "T_world_scan": 4x4,
      "warnings": [...], "timings": {...}}
+
+The world frame is the scan's, or the scan levelled on its floor when built with ``level_floor``
+(``T_world_scan`` maps the scan's frame into it; identity otherwise). ``floor`` is the floor plane in
+the world frame (:class:`recon.leveling.Floor`): ``normal`` (unit, up into the room), ``height_m`` its
+offset from the origin along the normal (for a level floor, its z), ``tilt_deg`` the angle between the
+normal and +z, ``n_points`` the background points it was fitted to (0: no floor points; z = 0 assumed).
 
 A part's ``size`` follows :mod:`recon.primitive` (box extents; cylinder (2r, 2r, length along local
 z); sphere (2r, 2r, 2r)). A part's ``shapes`` are its articulated-template shapes (a drawer's front and box, a body's carcass
@@ -35,6 +42,7 @@ import numpy as np
 
 from recon.config import ReconConfig
 from recon.errors import ScanError
+from recon.leveling import Floor
 from recon.model import (ContactEdge, JointEstimate, JointUncertainty, ObjectReconstruction, PartFit,
                          Reconstruction, SceneGraph)
 from recon.primitive import Primitive, SurfacePlane
@@ -88,6 +96,8 @@ def graph_dict(rec: Reconstruction) -> dict:
         "proximal": [[a, b] for a, b in rec.graph.proximal],
         "walls": [{"name": w.name, "size": _list(w.size), "T_world_wall": _list(w.T_world_wall),
                    "n_points": w.n_points} for w in rec.walls],
+        **({} if rec.floor is None else {"floor": rec.floor.as_dict()}),
+        "T_world_scan": _list(rec.T_world_scan),
         "warnings": list(rec.warnings), "timings": dict(rec.timings),
     }
 
@@ -124,10 +134,12 @@ def reconstruction_from_dict(doc: dict, source: str = "<dict>") -> Reconstructio
         graph = SceneGraph(tuple((a, b) for a, b in doc["supports"]), tuple((a, b) for a, b in doc["proximal"]))
         walls = tuple(Wall(w["name"], w["size"], w["T_world_wall"], int(w.get("n_points", 0)))
                       for w in doc.get("walls", ()))
+        floor = Floor.from_dict(doc["floor"]) if doc.get("floor") else None
+        T_world_scan = np.asarray(doc.get("T_world_scan", np.eye(4)), dtype=np.float64).reshape(4, 4)
     except (KeyError, TypeError, ValueError) as exc:
         raise ScanError(f"{source}: malformed {FORMAT} document ({type(exc).__name__}: {exc})") from exc
     return Reconstruction(tuple(objects), graph, tuple(doc.get("warnings", ())), config,
-                          int(doc.get("seed", 0)), dict(doc.get("timings", {})), walls)
+                          int(doc.get("seed", 0)), dict(doc.get("timings", {})), walls, floor, T_world_scan)
 
 
 def read_graph_json(path: str | Path) -> Reconstruction:

@@ -7,12 +7,14 @@
     SceneGraph           inter-object supporting and proximal relations
     Reconstruction       the whole scene (written by :func:`recon.output.write_reconstruction`)
 
-Frames: ``T_a_b`` is the (4, 4) pose of b in a; everything here is in the world frame (z up, metres).
+Frames: ``T_a_b`` is the (4, 4) pose of b in a; everything here is in the world frame, metres: the scan's
+frame (z up, the floor at ``Reconstruction.floor``, which may be a few cm off z = 0 and tilted), or with
+``level_floor`` the levelled one (the floor z = 0). "Up" below means the floor's normal.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -52,6 +54,12 @@ class PartFit:
     def solids(self) -> tuple[Primitive, ...]:
         """The part's geometry as URDF shapes: its template shapes, else its fitted primitive."""
         return tuple(self.shapes) or (self.primitive,)
+
+    def transformed(self, T_new_world: np.ndarray) -> "PartFit":
+        """The part moved rigidly by ``T_new_world`` (4, 4): primitive, planes and shapes."""
+        return replace(self, primitive=self.primitive.transformed(T_new_world),
+                       planes=tuple(q.transformed(T_new_world) for q in self.planes),
+                       shapes=tuple(q.transformed(T_new_world) for q in self.shapes))
 
     def isclose(self, other: "PartFit", atol: float = 1e-6) -> bool:
         return (self.part_id == other.part_id and self.label == other.label and self.link == other.link
@@ -136,6 +144,11 @@ class JointEstimate:
         object.__setattr__(self, "axis", np.asarray(self.axis, dtype=np.float64).reshape(3))
         object.__setattr__(self, "origin", np.asarray(self.origin, dtype=np.float64).reshape(3))
 
+    def transformed(self, T_new_world: np.ndarray) -> "JointEstimate":
+        """The joint moved rigidly by ``T_new_world`` (4, 4): axis rotated, origin moved."""
+        R = T_new_world[:3, :3]
+        return replace(self, axis=R @ self.axis, origin=R @ self.origin + T_new_world[:3, 3])
+
     def isclose(self, other: "JointEstimate", atol: float = 1e-6) -> bool:
         return (self.name == other.name and self.type is other.type
                 and self.parent_part_id == other.parent_part_id
@@ -155,7 +168,7 @@ class ObjectReconstruction:
     contacts : every directed edge satisfying Eq. 1 (the graph the tree was chosen from)
     joints : one per part: the root's fixed joint to the world, then one per tree edge
     isolated_part_ids : parts that touched nothing; fixed to the root and reported
-    T_world_object : (4, 4) object frame: bottom centre, x = front normal, z up
+    T_world_object : (4, 4) object frame: bottom centre, x = front normal, z = the floor's normal
     size : (3,) extent in the object frame, metres
     supported_by : id of the supporting object, or None for the floor
     """
@@ -177,6 +190,12 @@ class ObjectReconstruction:
             if p.part_id == part_id:
                 return p
         raise KeyError(f"object {self.name}: no part {part_id}")
+
+    def transformed(self, T_new_world: np.ndarray) -> "ObjectReconstruction":
+        """The object moved rigidly by ``T_new_world`` (4, 4): parts, joints and frame."""
+        return replace(self, parts=tuple(p.transformed(T_new_world) for p in self.parts),
+                       joints=tuple(j.transformed(T_new_world) for j in self.joints),
+                       T_world_object=T_new_world @ self.T_world_object)
 
     def primitives(self) -> dict[int, Primitive]:
         """{part_id: fitted primitive} (for metrics: Chamfer / IoU)."""
@@ -210,6 +229,9 @@ class Reconstruction:
     config : the ReconConfig used; seed : the seed used
     timings : {stage: seconds}
     walls : :class:`recon.walls.Wall` fitted to the background (links ``wall0``, ``wall1``, ...)
+    floor : :class:`recon.leveling.Floor`, the floor plane in the output's frame (the scan's, or the
+        levelled one with ``level_floor``); None when unknown (a graph.json written before it existed)
+    T_world_scan : (4, 4) the output's frame from the scan's: identity, or the levelling rotation and shift
     """
 
     objects: tuple[ObjectReconstruction, ...]
@@ -219,6 +241,8 @@ class Reconstruction:
     seed: int = 0
     timings: dict = field(default_factory=dict)
     walls: tuple = ()
+    floor: object = None
+    T_world_scan: np.ndarray = field(default_factory=lambda: np.eye(4))
 
     def object(self, object_id: int) -> ObjectReconstruction:
         for o in self.objects:

@@ -2,7 +2,9 @@
 
 Stages, in order (each a function below; per-object state travels in an :class:`ObjectState`)::
 
-    level_floor        optional: the scan rotated so that its floor is z = 0, z up (leveling.py)
+    floor_frame        the floor found in the background (height, tilt); a scan that is upside down, not
+                       z-up or not in metres refused; the scan moved into the floor frame (floor z = 0,
+                       z up) for every stage below (leveling.py, frame_checks.py)
     remove_outliers    statistical outliers dropped part by part (outliers.py)
     split_labelled_fronts  a drawer/door part showing horizontal gaps split, one part per front (front_split.py)
     fit_primitives     Eq. 3: the best primitive per part, the base part first; a fit that does not cover
@@ -18,8 +20,11 @@ Stages, in order (each a function below; per-object state travels in an :class:`
     estimate_object_joints  joint type, axis, origin and swept limits (joints.py), template shapes,
                        object frame -> ObjectReconstruction
     scene graph        support and proximal relations; walls from the background (walls.py)
+    output_frame       everything moved back into the scan's frame, standing on its floor (without
+                       ``level_floor``; with it the output stays levelled: floor z = 0, z up)
 
-Every length is in metres in the world frame of the scan (z up after ``level_floor``).
+Every length is in metres. The stages between ``floor_frame`` and ``output_frame`` work in the floor
+frame (the floor z = 0, z up); the output is in the scan's frame, or levelled with ``level_floor``.
 """
 
 from __future__ import annotations
@@ -42,6 +47,7 @@ from recon.front_split import split_fronts
 from recon.handle_shapes import HandleShapes, mounted_handle_shapes, posed_handle_shapes
 from recon.joint_uncertainty import with_joint_uncertainty
 from recon.joints import estimate_joints
+from recon.leveling import Floor, find_floor
 from recon.model import ContactEdge, JointEstimate, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
 from recon.outliers import scan_without_outliers
 from recon.part_shapes import template_shapes
@@ -132,7 +138,8 @@ def reconstruct(scan_path, labels_path, *, config: ReconConfig = ReconConfig(), 
                 seed: int = 0, progress: Progress | None = None) -> Reconstruction:
     """Reconstruct the scene of ``scan_path`` (.ply / .npz) labelled by ``labels_path`` (labels.json).
 
-    level_floor : find the floor and the up direction first (scans in a camera frame).
+    level_floor : write the output levelled on the scan's floor (floor z = 0, z up; the scan may then
+        also be upside down or not z-up) instead of in the scan's frame.
     seed : every random choice (sampling, RANSAC) derives from it; same inputs + seed = same output.
     Raises :class:`recon.ScanError` on unusable input; per-part problems go to ``.warnings``.
     """
@@ -145,9 +152,8 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
     """:func:`reconstruct` on an already read :class:`recon.scan.Scan`."""
     t_start = time.perf_counter()
     run = _Run(config, int(seed), list(scan.warnings))
-    if level_floor:
-        scan = level_scan(scan, run)
-        run.timings["level_floor"] = time.perf_counter() - t_start
+    scan, floor, T_floor_scan = floor_frame(scan, run, level_floor)
+    run.timings["floor"] = time.perf_counter() - t_start
     t0 = time.perf_counter()
     scan = remove_outliers(scan, run)
     run.timings["outliers"] = time.perf_counter() - t0
@@ -191,21 +197,62 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
         walls = room_walls(scan, run)
         run.timings["walls"] = time.perf_counter() - t0
     objects, walls = cleared_scene(objects, walls, config.clearance, run.warn)
+    objects, walls, floor = output_frame(objects, walls, floor, T_floor_scan, level_floor, run)
     run.timings["total"] = time.perf_counter() - t_start
     if progress:
         progress("done", n_obj, n_obj)
-    return Reconstruction(tuple(objects), graph, tuple(run.warnings), config, run.seed, run.timings, walls)
+    T_world_scan = T_floor_scan if level_floor else np.eye(4)
+    return Reconstruction(tuple(objects), graph, tuple(run.warnings), config, run.seed, run.timings, walls,
+                          floor, T_world_scan)
 
 
 # --- scan stages ---------------------------------------------------------------------------------------
 
-def level_scan(scan: Scan, run: _Run) -> Scan:
-    """The scan moved rigidly so that its floor plane is z = 0 with z up (leveling.py)."""
-    from recon.leveling import floor_transform
+def floor_frame(scan: Scan, run: _Run, level_floor: bool) -> tuple[Scan, Floor, np.ndarray]:
+    """(the scan in the floor frame, its floor in the scan's frame, T_floor_scan (4, 4)).
 
-    T, tilt = floor_transform(scan, run.config.leveling, run.config.scene, run.seed)
-    log.info("levelled the scan: up direction was %.1f deg off", np.degrees(tilt))
-    return scan.transformed(T)
+    Raises ScanError (:mod:`recon.frame_checks`) for a scan upside down or not z-up (unless
+    ``level_floor``) or not in metres. Without floor points the frame is kept (T = identity, z = 0
+    taken as the floor) with a warning."""
+    from recon.errors import ScanError
+    from recon.frame_checks import frame_problem, scale_problems
+
+    cfg = run.config.leveling
+    floor = find_floor(scan, cfg, run.config.scene, run.seed)
+    if floor.found and floor.tilt_deg < cfg.min_floor_tilt_deg:
+        log.info("floor tilted %.3f deg: taken as level", floor.tilt_deg)
+        floor = floor.levelled()
+    if floor.found:
+        problem = frame_problem(floor, cfg, scan.source)
+        if problem and not level_floor:
+            raise ScanError(problem)
+        log.info("floor: %d points, %.3f m off the scan's origin, tilted %.2f deg%s", floor.n_points,
+                 floor.height_m, floor.tilt_deg, "; levelled" if level_floor else "")
+    else:
+        run.warn(f"{scan.source}: no floor in the scan (no background plane of {cfg.floor_min_points}+ points "
+                 "that an object touches): the scan's frame is kept and its z = 0 taken as the floor"
+                 + ("; --level-floor has nothing to level on" if level_floor else ""))
+    T = floor.T_floor_frame()
+    levelled = scan.transformed(T) if floor.found else scan
+    problem = scale_problems(levelled, scan.source)
+    if problem:
+        raise ScanError(problem)
+    return levelled, floor, T
+
+
+def output_frame(objects: list[ObjectReconstruction], walls: tuple, floor: Floor, T_floor_scan: np.ndarray,
+                 level_floor: bool, run: _Run) -> tuple[list[ObjectReconstruction], tuple, Floor]:
+    """The objects and walls (floor frame) moved back into the scan's frame, and the floor in the
+    output's frame; with ``level_floor`` (and a floor found) they stay levelled: the floor z = 0."""
+    cfg = run.config.leveling
+    if level_floor and floor.found:
+        return objects, walls, floor.transformed(T_floor_scan)
+    T = np.linalg.inv(T_floor_scan)
+    if floor.found and (abs(floor.height_m) > cfg.floor_offset_warning or floor.tilt_deg > 0.0):
+        run.warn(f"the scan's floor is {floor.height_m:+.3f} m off its origin and tilted {floor.tilt_deg:.1f} deg: "
+                 "the output stays in the scan's frame, objects on that floor; planners and simcheck put the "
+                 "robot and the ground plane on z = 0: pass --level-floor to write the scene levelled on its floor")
+    return [o.transformed(T) for o in objects], tuple(w.transformed(T) for w in walls), floor
 
 
 def remove_outliers(scan: Scan, run: _Run) -> Scan:

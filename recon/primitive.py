@@ -36,6 +36,12 @@ class SurfacePlane:
     d: float
     polygon: np.ndarray
 
+    def transformed(self, T_new_world: np.ndarray) -> "SurfacePlane":
+        """The same plane moved rigidly by ``T_new_world`` (4, 4)."""
+        R, t = T_new_world[:3, :3], T_new_world[:3, 3]
+        n = R @ self.normal
+        return SurfacePlane(n, float(self.d - n @ t), self.polygon @ R.T + t)
+
     def isclose(self, other: "SurfacePlane", atol: float = 1e-6) -> bool:
         return (np.allclose(self.normal, other.normal, atol=atol) and abs(self.d - other.d) <= atol
                 and self.polygon.shape == other.polygon.shape

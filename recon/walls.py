@@ -38,6 +38,10 @@ class Wall:
         object.__setattr__(self, "size", np.asarray(self.size, dtype=np.float64).reshape(3))
         object.__setattr__(self, "T_world_wall", np.asarray(self.T_world_wall, dtype=np.float64).reshape(4, 4))
 
+    def transformed(self, T_new_world: np.ndarray) -> "Wall":
+        """The wall moved rigidly by ``T_new_world`` (4, 4)."""
+        return Wall(self.name, self.size, T_new_world @ self.T_world_wall, self.n_points)
+
     def isclose(self, other: "Wall", atol: float = 1e-6) -> bool:
         return (self.name == other.name and np.allclose(self.size, other.size, atol=atol)
                 and np.allclose(self.T_world_wall, other.T_world_wall, atol=atol))
