@@ -26,7 +26,7 @@ def _parser() -> argparse.ArgumentParser:
     mk = sub.add_parser("make", help="make and scan a scene", parents=[common])
     mk.add_argument("name", help="scene name (see `scenes list`)")
     mk.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
-    mk.add_argument("--preset", default="clean", help="scan preset: clean | realistic (default clean)")
+    mk.add_argument("--preset", default="clean", help="scan preset: clean | realistic | scannet (default clean)")
     add_output_arguments(mk, "truth.urdf, truth.json, scan.ply, labels.json, scan.npz, scan_meta.json, previews")
     mk.add_argument("--no-scan", action="store_true", help="write the ground truth only")
     mk.add_argument("--no-previews", action="store_true", help="skip the preview PNGs")

@@ -68,10 +68,12 @@ def write_scan_npz(scan: Scan, path: str | Path) -> Path:
 
 
 def write_scan_meta(scan: Scan, path: str | Path, meta: dict) -> Path:
-    """``scan_meta.json``: ``meta`` (scene, seed, preset, parameters) + point count + camera poses."""
+    """``scan_meta.json``: ``meta`` (scene, seed, preset, parameters) + point count + camera poses (world
+    frame) + ``T_scan_world`` (the scan's frame from the world's: identity unless the preset tilts it)."""
     d = dict(meta)
     d.update(points=len(scan), frames=len(scan.T_world_cameras),
-             T_world_cameras=[[[float(x) for x in row] for row in T] for T in scan.T_world_cameras])
+             T_world_cameras=[[[float(x) for x in row] for row in T] for T in scan.T_world_cameras],
+             T_scan_world=[[float(x) for x in row] for row in scan.T_scan_world])
     return write_text_atomic(path, json.dumps(d, indent=1) + "\n")
 
 

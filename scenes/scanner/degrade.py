@@ -10,7 +10,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 __all__ = ["depth_sigma", "keep_returns", "add_depth_noise", "add_outliers", "flip_boundary_labels",
-           "voxel_keep"]
+           "voxel_keep", "punch_holes", "bleed_into_background", "label_fragments", "tilt_about"]
 
 
 def depth_sigma(ranges: np.ndarray, base: float, quadratic: float) -> np.ndarray:
@@ -85,3 +85,61 @@ def voxel_keep(points: np.ndarray, voxel: float, rng: np.random.Generator) -> np
     keys = (k[:, 0] << 42) | (k[:, 1] << 21) | k[:, 2]
     _, first = np.unique(keys, return_index=True)
     return np.sort(order[first])
+
+
+def punch_holes(points: np.ndarray, holes_per_m2: float, radius: tuple[float, float], spacing: float,
+                rng: np.random.Generator) -> np.ndarray:
+    """(n,) bool: points kept outside holes. The surface is about ``n * spacing**2`` m^2 (one point per
+    ``spacing`` square); ``holes_per_m2`` times that many holes, each a ball of radius U(``radius``) m
+    around a random point (unseen or unfused surface: dark, shiny or never in view)."""
+    n = len(points)
+    keep = np.ones(n, bool)
+    k = int(rng.poisson(holes_per_m2 * n * spacing**2)) if holes_per_m2 > 0 and n else 0
+    if k == 0:
+        return keep
+    tree = cKDTree(points)
+    for c, r in zip(rng.integers(0, n, k), rng.uniform(radius[0], radius[1], k)):
+        keep[tree.query_ball_point(points[c], r)] = False
+    return keep
+
+
+def bleed_into_background(points: np.ndarray, object_id: np.ndarray, part_id: np.ndarray, width: float, prob: float,
+                          rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    """(object ids, part ids) where each background point within ``width`` m of an object's point takes
+    that (nearest) point's object and part with probability ``prob`` (a segmentation mask spilling onto
+    the floor or wall it touches)."""
+    oid, pid = object_id.copy(), part_id.copy()
+    fg, bg = np.flatnonzero(object_id >= 0), np.flatnonzero(object_id < 0)
+    if width <= 0 or prob <= 0 or not len(fg) or not len(bg):
+        return oid, pid
+    d, nn = cKDTree(points[fg]).query(points[bg], distance_upper_bound=width)
+    hit = np.isfinite(d) & (rng.random(len(bg)) < prob)
+    src = fg[nn[hit]]
+    oid[bg[hit]], pid[bg[hit]] = object_id[src], part_id[src]
+    return oid, pid
+
+
+def label_fragments(points: np.ndarray, object_id: np.ndarray, part_id: np.ndarray, per_object: float,
+                    radius: tuple[float, float], rng: np.random.Generator) -> np.ndarray:
+    """(n,) part ids with small wrong-label fragments: per object Poisson(``per_object``) balls of radius
+    U(``radius``) m around random points of it, whose points take another part of the same object."""
+    new = part_id.copy()
+    if per_object <= 0:
+        return new
+    for o in np.unique(object_id[object_id >= 0]):
+        idx = np.flatnonzero(object_id == o)
+        parts = np.unique(part_id[idx])
+        k = int(rng.poisson(per_object))
+        if len(parts) < 2 or k == 0:
+            continue
+        tree = cKDTree(points[idx])
+        for c, r in zip(rng.integers(0, len(idx), k), rng.uniform(radius[0], radius[1], k)):
+            ball = idx[tree.query_ball_point(points[idx[c]], r)]
+            others = parts[parts != part_id[idx[c]]]
+            new[ball] = others[rng.integers(len(others))]
+    return new
+
+
+def tilt_about(points: np.ndarray, R: np.ndarray, pivot: np.ndarray) -> np.ndarray:
+    """(n, 3) ``points`` rotated by ``R`` (3, 3) about ``pivot`` (3,)."""
+    return (points - pivot) @ R.T + pivot

@@ -1,4 +1,4 @@
-"""Scanner parameters: camera, path and degradations, with the ``clean`` and ``realistic`` presets.
+"""Scanner parameters: camera, path and degradations, with the ``clean``, ``realistic`` and ``scannet`` presets.
 
 Depth noise is Gaussian along each ray with standard deviation ``sigma(r) = depth_noise_base +
 depth_noise_quadratic * r**2`` (metres, r = range in metres; the realistic defaults follow the
@@ -31,6 +31,20 @@ class ScanParams:
     ``label_flip_prob``: probability that a point within ``label_boundary_width`` m of another part of
     the same object takes that part's label. Downsampling: one real return is kept per ``voxel_size``
     cube on objects and per ``background_voxel`` cube on the floor/walls (0 = keep all).
+
+    ScanNet-style capture (each off at 0; ranges are (min, max) drawn uniformly per scan / object):
+    the scan's frame is the world tilted ``frame_tilt_deg`` degrees about a random horizontal axis with
+    the floor ``frame_floor_offset`` metres from its origin along the floor's normal (``Scan.T_scan_world``);
+    each object's points are tilted about its bottom centre so that its up direction is
+    ``object_tilt_deg`` degrees off the scan frame's z (the frame's tilt included: a fused
+    reconstruction's warp); the camera pose drifts along the path by a random walk of ``drift_m`` metres
+    and ``drift_deg`` degrees per frame (standard deviations); ``holes_per_m2`` holes per square metre of
+    scanned surface, balls of radius ``hole_radius`` metres, are cut out. Segmentation-network label
+    noise: a background point within ``background_bleed_width`` m of an object takes its label with
+    probability ``background_bleed_prob``; ``fragments_per_object`` (Poisson mean) balls of radius
+    ``fragment_radius`` m take another part's label of their object; with probability
+    ``merge_fronts_prob`` a column of two or more drawer fronts carries one part id (the lowest drawer's;
+    labels.json then lists the column as that one drawer).
     """
 
     width: int = 256
@@ -52,6 +66,18 @@ class ScanParams:
     voxel_size: float = 0.01
     background_voxel: float = 0.05
     include_background: bool = True
+    frame_tilt_deg: tuple[float, float] = (0.0, 0.0)
+    frame_floor_offset: tuple[float, float] = (0.0, 0.0)
+    object_tilt_deg: tuple[float, float] = (0.0, 0.0)
+    drift_m: float = 0.0
+    drift_deg: float = 0.0
+    holes_per_m2: float = 0.0
+    hole_radius: tuple[float, float] = (0.03, 0.10)
+    background_bleed_width: float = 0.0
+    background_bleed_prob: float = 0.0
+    fragments_per_object: float = 0.0
+    fragment_radius: tuple[float, float] = (0.02, 0.05)
+    merge_fronts_prob: float = 0.0
 
     def __post_init__(self):
         checks = [
@@ -68,6 +94,17 @@ class ScanParams:
             ("label_boundary_width", self.label_boundary_width >= 0),
             ("label_flip_prob", 0.0 <= self.label_flip_prob <= 1.0),
             ("voxel_size", self.voxel_size >= 0), ("background_voxel", self.background_voxel >= 0),
+            ("frame_tilt_deg", 0.0 <= self.frame_tilt_deg[0] <= self.frame_tilt_deg[1] <= 10.0),
+            ("frame_floor_offset", -1.0 <= self.frame_floor_offset[0] <= self.frame_floor_offset[1] <= 1.0),
+            ("object_tilt_deg", 0.0 <= self.object_tilt_deg[0] <= self.object_tilt_deg[1] <= 10.0),
+            ("drift_m", self.drift_m >= 0), ("drift_deg", self.drift_deg >= 0),
+            ("holes_per_m2", self.holes_per_m2 >= 0),
+            ("hole_radius", 0.0 < self.hole_radius[0] <= self.hole_radius[1]),
+            ("background_bleed_width", self.background_bleed_width >= 0),
+            ("background_bleed_prob", 0.0 <= self.background_bleed_prob <= 1.0),
+            ("fragments_per_object", self.fragments_per_object >= 0),
+            ("fragment_radius", 0.0 < self.fragment_radius[0] <= self.fragment_radius[1]),
+            ("merge_fronts_prob", 0.0 <= self.merge_fronts_prob <= 1.0),
         ]
         for name, ok in checks:
             if not ok:
@@ -80,6 +117,15 @@ PRESETS = {
                             grazing_limit_deg=80.0, outlier_rate=0.002, outlier_range=0.3,
                             label_boundary_width=0.015, label_flip_prob=0.3, voxel_size=0.012,
                             background_voxel=0.07),
+    # ScanNet-style (issue 12): handles of 9-14 points, the floor 4-7 cm off the frame's origin and tilted
+    # about 1 deg, objects 1.6-2.9 deg off the frame's z, drift, holes and a segmentation network's labels
+    "scannet": ScanParams(depth_noise_base=0.0015, depth_noise_quadratic=0.002, missing_rate=0.08,
+                          grazing_limit_deg=78.0, outlier_rate=0.002, outlier_range=0.3, label_boundary_width=0.02,
+                          label_flip_prob=0.3, voxel_size=0.035, background_voxel=0.07, frame_tilt_deg=(0.8, 1.2),
+                          frame_floor_offset=(0.04, 0.07), object_tilt_deg=(1.6, 2.9), drift_m=0.0005,
+                          drift_deg=0.01, holes_per_m2=0.3, hole_radius=(0.03, 0.08), background_bleed_width=0.02,
+                          background_bleed_prob=0.3, fragments_per_object=1.0, fragment_radius=(0.02, 0.04),
+                          merge_fronts_prob=0.5),
 }
 
 
