@@ -10,9 +10,11 @@ Where the handle is looked for, in order:
    face of its largest geometry (the panel), along the way the part opens, and small beside it (a knob,
    a handle exported as unnamed mesh geometry of the door);
 6. when the part has mesh geometry and nothing of 5: the surface that stands out of its front face (a
-   door exported as one mesh, panel and handle together; :mod:`planners.handle_surface`).
+   door exported as one mesh, panel and handle together; :mod:`planners.handle_surface`);
+7. nothing of the above: the front panel's edges, pinched across the panel (:mod:`planners.edge_grasp`).
 
-No handle raises :class:`planners.errors.HandleNotFoundError` naming the file and the joint.
+A panel too thick for the gripper raises :class:`planners.errors.HandleNotFoundError` naming the file and
+the joint; whether a finger fits behind an edge is for the stand-pose search to find out.
 
 Grasp frame (the robot's tool frame at grasp): origin at the handle bar's centre, z (approach) against
 the part's outward direction (the direction the grasp point moves when the joint opens), x along the
@@ -60,7 +62,11 @@ class HandleGrasp:
         T_link_grasps: tuple of (4, 4) candidate grasp frames in the moving link's frame.
         bar_width: float, metres, extent of the bar across the finger closing direction (0 if unknown).
         source: how the handle was found ("grasp_link", "grasp_point", "handle link", "fixed child",
-            "named geometry", "protruding geometry", "protruding surface").
+            "named geometry", "protruding geometry", "protruding surface", "panel edge": no handle, the
+            front panel pinched at an edge).
+        facing: (3,) world unit direction the robot should stand along from the grasp (the front's outward
+            normal) when the approach does not say it (a pinch approaches in the panel's plane); None:
+            opposite the approach.
     """
 
     moving_link: str
@@ -69,6 +75,7 @@ class HandleGrasp:
     T_link_grasps: tuple
     bar_width: float
     source: str
+    facing: np.ndarray | None = None
 
 
 def _fixed_descendants(scene: SceneModel, link: str) -> list[str]:
@@ -233,12 +240,14 @@ def _name(cand) -> str:
 
 
 def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerConfig,
-                direction: float = 1.0, amount: float = 0.0) -> HandleGrasp:
+                direction: float = 1.0, amount: float = 0.0, grip_width: float = 0.08) -> HandleGrasp:
     """Find the handle of the part moved by ``task.joint`` with the scene at joint ``values``; ``direction``
     +1 / -1: the joint opens toward increasing / decreasing values (the outward side is where the handle
     moves when it opens). ``amount`` (rad, signed; 0: unknown): how far a revolute joint will turn; on a
     door that swings up or down (a horizontal hinge) the approach turns with it, and the first grasp
-    candidates are tilted so that the approach is tilted by ``cfg.grasp_tilt`` half-way through the swing."""
+    candidates are tilted so that the approach is tilted by ``cfg.grasp_tilt`` half-way through the swing.
+    A part without a handle is pinched on an edge of its front panel (:mod:`planners.edge_grasp`; source
+    "panel edge") when the panel is thinner than ``grip_width`` (m, the gripper's largest opening) allows."""
     j = scene.joints[task.joint]
     moving = j.child
     where = f"{scene.path}: joint {task.joint!r}"
@@ -301,11 +310,7 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
             cands = [c for c in every if (c[0], c[3]) in set(surface.geoms)]
             source = "protruding surface"
         if not cands:
-            raise HandleNotFoundError(
-                f"{where}: no handle found on moving link {moving!r} (no fixed child link named '*handle*', "
-                f"no single fixed child, no collision geometry named '*handle*', no "
-                f"geometry standing out of its front): nothing to pull, and a closed front's free edge leaves no "
-                f"room for a finger behind it; give OpenTask.grasp_point or grasp_link")
+            return _edge_grasp(scene, task, every, T_world_moving, values, direction, cfg, grip_width, where)
         if surface is not None:      # a handle that is part of the front's own mesh
             grasp_link, depth_geom = cands[0][0], None
             p_link, axis, width = surface.p, surface.axis, surface.width
@@ -336,6 +341,32 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
     geoms = frozenset((c[0], c[3]) for c in cands)
     log.debug("%s: handle via %s at %s, outward %s", where, source, p_world.round(3), n.round(3))
     return HandleGrasp(moving, grasp_link, geoms, T_link, width, source)
+
+
+def _edge_grasp(scene, task, every, T_world_moving, values, direction, cfg, grip_width, where) -> HandleGrasp:
+    """Pinch grasps on the front panel's edges of a part without a handle (:func:`planners.edge_grasp.edge_grasps`)."""
+    from planners.edge_grasp import edge_grasps
+    moving = scene.joints[task.joint].child
+    if not every:
+        raise HandleNotFoundError(f"{where}: no handle found on moving link {moving!r} and no geometry to pinch; "
+                                  f"give OpenTask.grasp_point or grasp_link")
+
+    def speed(p_link):
+        return direction * outward_direction(scene, task.joint, (T_world_moving @ np.append(p_link, 1.0))[:3], values)
+
+    centre = np.mean([(c[2] @ np.append(_bar(c[1])[1], 1.0))[:3] for c in every], axis=0)
+    outward = T_world_moving[:3, :3].T @ speed(centre)
+    if np.linalg.norm(outward) < 1e-9:      # the centre on the axis (a door turning about its middle)
+        outward = T_world_moving[:3, :3].T @ speed(centre + np.array([0.1, 0.1, 0.1]))
+    edges = edge_grasps(every, speed, outward, grip_width, where)
+    lever = max(float(np.linalg.norm(speed(T[:3, 3]))) for T in edges.frames) if edges.frames else 0.0
+    if lever < cfg.min_handle_lever:
+        raise HandleStaysPutError(f"{where}: the front's edges do not move when the joint opens (its panel lies "
+                                  f"on the hinge axis)")
+    facing = T_world_moving[:3, :3] @ edges.facing
+    log.debug("%s: no handle; pinching the front panel's edge (%.0f mm thick)", where, edges.thickness * 1000)
+    return HandleGrasp(moving, edges.geom[0], frozenset([edges.geom]), edges.frames, edges.thickness, "panel edge",
+                       facing=facing)
 
 
 #: a swing that turns the approach up or down by more than this (rad) gets the swing-centred grasp first

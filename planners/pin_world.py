@@ -179,7 +179,11 @@ class PlanningWorld:
         handle_geoms: ``{(link, collision_index)}`` scene geometries the gripper may touch when allowed.
         scene_state: values of other scene joints (default 0).
         clearance: metres; robot links other than the gripper must stay this far from the scene and the floor
-            (coal security margin), so small tracking errors in execution do not touch the scene.
+            (coal security margin), so small tracking errors in execution do not touch the scene. While
+            :meth:`keep_gripper_clear` is on (the free approach to the pre-grasp), the gripper keeps it too from
+            every scene link but the part the task moves: a neighbouring front or handle, estimated a few
+            millimetres off, is not brushed on the way; near the grasp (grasp, opening, release, retreat) the
+            gripper may come as close as the grasp needs (a pinch next to the carcass).
     """
 
     PREFIX = "scene::"
@@ -240,16 +244,34 @@ class PlanningWorld:
         self.grasp_pairs = [k for k, cp in enumerate(self.geom.collisionPairs)
                             if (cp.first in grip and cp.second in handle) or (cp.second in grip and cp.first in handle)]
         self.handle_geom_ids = sorted(handle)
+        part = self._part_links(scene, task_joint)
+        own = {i for i, go in enumerate(self.geom.geometryObjects) if key_of.get(go.name, ("",))[0] in part}
         self.arm_scene_pairs = []   # (non-gripper robot link, scene geometry) pairs: clearance queries
+        self._gripper_scene_pairs = []   # (gripper link, scene geometry off the task's part): the free approach's
         for k, cp in enumerate(self.geom.collisionPairs):
             a, b = sorted((cp.first, cp.second))
             if a < nr and b >= nr and a not in grip:
                 self.gdata.collisionRequests[k].security_margin = float(clearance)
                 if b != fi:
                     self.arm_scene_pairs.append(k)
+            elif a < nr and b >= nr and b != fi and b not in own:
+                self._gripper_scene_pairs.append(k)
+        self._clearance = float(clearance)
         self._allow = False
         self.manager = pin.BroadPhaseManager_DynamicAABBTreeCollisionManager(self.model, self.geom, self.gdata)
         self.checks = 0
+
+    @staticmethod
+    def _part_links(scene: SceneModel, joint: str) -> set:
+        """The links the task's part consists of: the joint's child and the links fixed below it."""
+        if joint not in scene.joints:
+            return set()
+        out, stack = set(), [scene.joints[joint].child]
+        while stack:
+            link = stack.pop()
+            out.add(link)
+            stack += [j.child for j in scene.child_joints(link) if j.type == "fixed"]
+        return out
 
     def _set_scene_joint(self, name: str, value: float) -> None:
         full = self.PREFIX + name
@@ -268,6 +290,12 @@ class PlanningWorld:
             q[self.task_idx] = s
         else:
             q[self.task_idx:self.task_idx + 2] = (np.cos(s), np.sin(s))
+
+    def keep_gripper_clear(self, on: bool) -> None:
+        """From now on the gripper keeps the clearance from scene links other than the task's part (``on``), or
+        may touch them (the default, near the grasp)."""
+        for k in self._gripper_scene_pairs:
+            self.gdata.collisionRequests[k].security_margin = self._clearance if on else 0.0
 
     def _set_allow(self, allow: bool) -> None:
         if allow != self._allow:

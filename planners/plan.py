@@ -137,7 +137,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     kin = robot_kinematics(robot)
     opens_up = (amount > 0) != task.close          # which way the joint opens: the handle's outward side
     try:
-        handle = find_handle(scene, task, state, cfg, 1.0 if opens_up else -1.0, amount)
+        handle = find_handle(scene, task, state, cfg, 1.0 if opens_up else -1.0, amount, 2 * robot.finger_open)
     except HandleStaysPutError as exc:      # a usable estimate that moves the handle nowhere: nothing to pull
         return PlanResult(PlanStatus.OPENING_FAILED, f"{task.kind} {task.joint!r}: {exc}", task, robot.joint_names,
                           amount=amount, start_object_q=s0, moving_link=scene.joints[task.joint].child, seed=seed,
@@ -164,18 +164,22 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
         T_world_joint = scene.T_world_link(j.parent, state) @ j.T_parent_joint
         if abs((T_world_joint[:3, :3] @ j.axis)[2]) > 0.9:   # a vertical hinge: a side-swinging door
             hinge_xy = T_world_joint[:2, 3]
-    stands, summary, miss = find_stand_poses(kin, world, T_paths, s_path, cfg, rng, hinge_xy)
+    stands, summary, miss = find_stand_poses(kin, world, T_paths, s_path, cfg, rng, hinge_xy, handle.facing)
     timings["stand"] = time.perf_counter() - t
     if not stands:
         grasp_at = np.round(T_paths[0][0][:3, 3], 3).tolist()
+        edge = handle.source == "panel edge"
+        what = "the pinch on the front's edge" if edge else "the handle"
         if miss is None:
             missed = "every base pose sampled collides"
         elif miss > cfg.ik_pos_tol:
-            missed = f"nearest miss {miss:.3f} m: the handle at {grasp_at} is out of the robot's reach"
+            missed = f"nearest miss {miss:.3f} m: {what} at {grasp_at} is out of the robot's reach"
         else:
-            missed = f"nearest miss {miss:.3f} m: the handle at {grasp_at} is within reach, but no grasp is"
-        return result(PlanStatus.NO_STAND_POSE, f"{task.kind} {task.joint!r}: no stand pose from which the "
-                      f"handle can be grasped collision-free ({missed}; {summary})", nearest_miss=miss)
+            missed = f"nearest miss {miss:.3f} m: {what} at {grasp_at} is within reach, but no grasp is"
+        howto = (f"an edge of its {handle.bar_width * 1000:.0f} mm front panel can be pinched collision-free (it has "
+                 f"no handle)" if edge else "the handle can be grasped collision-free")
+        return result(PlanStatus.NO_STAND_POSE, f"{task.kind} {task.joint!r}: no stand pose from which {howto} "
+                      f"({missed}; {summary})", nearest_miss=miss)
     arm = np.zeros(robot.dof, bool)
     arm[3:] = True
     whole = np.ones(robot.dof, bool)
@@ -210,9 +214,13 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
     # Pre-grasp: backed off along the approach axis, gripper open, no contact allowed.
     t = time.perf_counter()
     T_pre = _translate_tool(T_path[0], -cfg.pregrasp_distance)
-    r = solve_ik(kin.tool_pose_jacobian, T_pre, q_grasp, lower, upper, arm, ik_weights(kin, cfg), pos_tol=cfg.ik_pos_tol,
-                 rot_tol=cfg.ik_rot_tol, restarts=cfg.ik_restarts, rng=rng, restart_span=np.full(spec.dof, 0.4),
-                 accept=lambda q: not world.in_collision(q, s0, False))
+    world.keep_gripper_clear(True)    # the approach's goal: clear of the neighbours
+    try:
+        r = solve_ik(kin.tool_pose_jacobian, T_pre, q_grasp, lower, upper, arm, ik_weights(kin, cfg),
+                     pos_tol=cfg.ik_pos_tol, rot_tol=cfg.ik_rot_tol, restarts=cfg.ik_restarts, rng=rng,
+                     restart_span=np.full(spec.dof, 0.4), accept=lambda q: not world.in_collision(q, s0, False))
+    finally:
+        world.keep_gripper_clear(False)
     if not r.success:
         return PlanStatus.IK_FAILED, "no collision-free pre-grasp configuration"
     q_pre = r.q
@@ -270,8 +278,34 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
     q_start = _start_configuration(world, spec, stand, start, cfg, s0)
     if isinstance(q_start, tuple):
         return q_start
-    if not world.within_limits(q_pre) or world.in_collision(q_pre, s0, False):
-        return PlanStatus.GOAL_IN_COLLISION, "pre-grasp configuration in collision"
+    world.keep_gripper_clear(True)    # the free approach keeps the gripper clear of the neighbours too
+    try:
+        if not world.within_limits(q_pre) or world.in_collision(q_pre, s0, False):
+            return PlanStatus.GOAL_IN_COLLISION, "pre-grasp configuration in collision"
+        qa, bad = _approach(world, q_start, q_pre, s0, cfg, seed, timings, t)
+        if isinstance(qa, tuple):
+            return qa
+        if bad >= 0:
+            return PlanStatus.NO_PATH, (f"approach: {cfg.approach_attempts} OMPL paths all collided when re-checked "
+                                        f"densely ({_what(world, qa[bad], s0)})")
+    finally:
+        world.keep_gripper_clear(False)
+    sa = np.full(len(qa), s0)
+    T_open = np.array([world.moving_link_pose(s) for s in o.s]) @ handle.T_link_grasps[stand.grasp_index]
+    q_rel = np.repeat(o.q[-1:], 2, axis=0)
+    return [
+        Segment("approach", qa, sa, _fk_poses(kin, qa), "open"),
+        Segment("grasp", g.q, g.s, _fk_poses(kin, g.q), "open"),
+        Segment("open", o.q, o.s, T_open, "closed"),
+        Segment("release", q_rel, np.full(2, s1), _fk_poses(kin, q_rel), "open"),
+        Segment("retreat", rt.q, rt.s, _fk_poses(kin, rt.q), "open"),
+    ], method, note
+
+
+def _approach(world, q_start, q_pre, s0, cfg, seed, timings, t):
+    """OMPL path from ``q_start`` to ``q_pre`` (task joint at ``s0``) densified at ``cfg.max_joint_step``:
+    ``(q (n, dof), index of its first invalid sample or -1)``, or ``((PlanStatus, reason), -1)``."""
+    lower, upper = world.robot.lower, world.robot.upper
     lo, hi = lower.copy(), upper.copy()
     span = np.array([1.0, 1.0, 1.0])
     lo[:3] = np.maximum(lower[:3], np.minimum(q_start[:3], q_pre[:3]) - span)
@@ -289,7 +323,7 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
                              planner=cfg.approach_planner, resolution=step / extent)
         if not mr.success:
             timings["approach"] = time.perf_counter() - t
-            return PlanStatus.NO_PATH, f"approach: {mr.reason}"
+            return (PlanStatus.NO_PATH, f"approach: {mr.reason}"), -1
         path = mr.path.copy()
         path[0], path[-1] = q_start, q_pre   # exactly the requested ends (OMPL copies may differ in the last bit)
         qa, sa = densify(path, np.full(len(path), s0), cfg.max_joint_step)
@@ -299,18 +333,7 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
         log.debug("approach path collides at dense sample %d; planning again with half the step", bad)
         step /= 2
     timings["approach"] = time.perf_counter() - t
-    if bad >= 0:
-        return PlanStatus.NO_PATH, (f"approach: {cfg.approach_attempts} OMPL paths all collided when re-checked "
-                                    f"densely ({_what(world, qa[bad], s0)})")
-    T_open = np.array([world.moving_link_pose(s) for s in o.s]) @ handle.T_link_grasps[stand.grasp_index]
-    q_rel = np.repeat(o.q[-1:], 2, axis=0)
-    return [
-        Segment("approach", qa, sa, _fk_poses(kin, qa), "open"),
-        Segment("grasp", g.q, g.s, _fk_poses(kin, g.q), "open"),
-        Segment("open", o.q, o.s, T_open, "closed"),
-        Segment("release", q_rel, np.full(2, s1), _fk_poses(kin, q_rel), "open"),
-        Segment("retreat", rt.q, rt.s, _fk_poses(kin, rt.q), "open"),
-    ], method, note
+    return qa, bad
 
 
 def _what(world, q, s) -> str:

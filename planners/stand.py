@@ -85,12 +85,15 @@ def _margin(q: np.ndarray, lower: np.ndarray, upper: np.ndarray, cols: np.ndarra
 
 
 def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: PlannerConfig,
-                     rng: np.random.Generator, hinge_xy: np.ndarray | None = None) -> StandSearch:
+                     rng: np.random.Generator, hinge_xy: np.ndarray | None = None,
+                     facing: np.ndarray | None = None) -> StandSearch:
     """Sample and rank stand poses for grasp paths ``T_paths`` (one ``(m, 4, 4)`` array per grasp candidate)
     at task joint values ``s_samples (m,)``.
 
     ``hinge_xy (2,)``: for a door, a point of its (vertical) hinge line; the lateral offsets are then
     biased away from the hinge (``cfg.door_lateral``), so the base stands clear of the swinging panel.
+    ``facing (3,)``: the world direction to stand along from the grasp (default: opposite the approach; a pinch
+    on a front's edge approaches in the front's plane, so it gives the front's outward normal).
 
     Returns a :class:`StandSearch`.
     """
@@ -98,7 +101,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
     lower, upper = world.robot.lower, world.robot.upper
     p0 = T_paths[0][0][:3, 3]
     approach = T_paths[0][0][:3, 2]
-    n = -approach[:2]
+    n = -approach[:2] if facing is None else np.asarray(facing, float)[:2]
     if np.linalg.norm(n) < 1e-6:
         n = np.array([1.0, 0.0])
     n = n / np.linalg.norm(n)

@@ -58,11 +58,21 @@ def test_handle_as_named_geometry_of_the_drawer_link(variants):
     assert np.allclose(_world_frames(s, h)[0][:3, 3], [1.215, 0.0, 0.615], atol=1e-6)
 
 
-def test_no_handle_raises_naming_the_file_and_joint(variants):
-    path = variants.no_handle()
-    s = read_scene_urdf(path)
-    with pytest.raises(HandleNotFoundError, match=r"no_handle.urdf: joint 'cabinet1_drawer12_joint': no handle"):
-        find_handle(s, OpenTask("drawer", DRAWER), {}, CFG)
+def test_without_a_handle_the_edges_of_the_front_panel_are_the_grasps(variants):
+    s = read_scene_urdf(variants.no_handle())
+    h = find_handle(s, OpenTask("drawer", DRAWER), {}, CFG)
+    assert h.source == "panel edge" and h.grasp_link == h.moving_link == "cabinet1_drawer12"
+    assert len(h.T_link_grasps) == 8                # four edges, each pinched with either finger on the outside
+    for T in _world_frames(s, h):
+        assert abs(T[:3, 1] @ [1, 0, 0]) == pytest.approx(1.0)     # closing across the panel (normal +x)
+        assert abs(T[:3, 2] @ [1, 0, 0]) < 1e-5                    # approaching in the panel's plane
+
+
+def test_no_handle_and_a_panel_too_thick_to_pinch_raises_naming_the_file_and_joint(variants):
+    s = read_scene_urdf(variants.no_handle())
+    with pytest.raises(HandleNotFoundError, match=r"no_handle.urdf: joint 'cabinet1_drawer12_joint': no handle, and "
+                       r"the front panel is \d+ mm thick"):
+        find_handle(s, OpenTask("drawer", DRAWER), {}, CFG, grip_width=0.01)
 
 
 def test_explicit_grasp_point_is_used_when_there_is_no_handle(variants):

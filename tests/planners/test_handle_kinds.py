@@ -44,12 +44,29 @@ def test_the_handle_is_found_whatever_its_kind(obj, k, source, shape, tmp_path):
         assert np.linalg.norm(T[:3, 3] - centre) < 1e-6
 
 
-def test_a_front_without_a_handle_is_refused_naming_what_was_looked_for(tmp_path):
+def test_a_front_without_a_handle_is_pinched_on_the_edges_of_its_panel(tmp_path):
+    """``sink_base_no_handles``: no handle of any kind, so the candidates pinch the 20 mm panel across its thickness,
+    the free edge (x = 0.4485 m in the object frame) first, 15 mm in from it, approached in the panel's plane."""
     o = thirdparty.build_object(thirdparty.spec_named("sink_base_no_handles"), tmp_path)
     s = read_scene_urdf(o.urdf)
-    with pytest.raises(HandleNotFoundError, match="no geometry standing out of its front.: nothing to pull, and a closed "
-                       "front.s free edge leaves no room for a finger behind it"):
-        find_handle(s, OpenTask("door", o.fronts[0].joint), {}, CFG)
+    j = o.fronts[0].joint
+    h = find_handle(s, OpenTask("door", j), {}, CFG)
+    assert h.source == "panel edge" and h.bar_width == pytest.approx(0.02)
+    assert h.handle_geoms == {(h.moving_link, 0)}
+    T = s.T_world_link(h.moving_link, {}) @ h.T_link_grasps[0]
+    place = np.array(o.spec.place[:2])             # yaw 0: object x, y = world x, y minus the placement
+    assert T[0, 3] - place[0] == pytest.approx(0.45 - 0.0015 - 0.015, abs=1e-6)     # 15 mm inside the free edge
+    assert np.allclose(T[:3, 2], [-1, 0, 0], atol=1e-9)      # approaching from beyond the edge, toward the hinge
+    assert abs(T[:3, 1] @ [0, 1, 0]) == pytest.approx(1.0)   # the fingers close across the panel
+    assert np.allclose(h.facing, [0, -1, 0], atol=1e-9)      # the robot stands in front of the cabinet
+
+
+def test_a_panel_thicker_than_the_gripper_opens_is_refused_naming_its_thickness(tmp_path):
+    o = thirdparty.build_object(thirdparty.spec_named("sink_base_no_handles"), tmp_path)
+    s = read_scene_urdf(o.urdf)
+    with pytest.raises(HandleNotFoundError, match=r"no handle, and the front panel is 20 mm thick: more than the "
+                       r"gripper opens \(25 mm\)"):
+        find_handle(s, OpenTask("door", o.fronts[0].joint), {}, CFG, grip_width=0.025)
 
 
 @pytest.mark.parametrize("k, bar", [(0, [1, 0, 0]), (1, [0, 0, 1])])

@@ -92,3 +92,57 @@ def test_clearance_keeps_the_base_away_from_the_scene(robot, fixture_urdf):
     assert _world(robot, fixture_urdf, clearance=0.01)[1].in_collision(q)
     assert not _world(robot, fixture_urdf, clearance=0.004)[1].in_collision(q)
     assert _world(robot, fixture_urdf)[1].clearance(q) == pytest.approx(0.005, abs=1e-4)
+
+
+def test_on_the_approach_the_gripper_keeps_the_clearance_from_a_neighbour_but_not_from_its_own_part(robot, tmp_path):
+    """``kitchen_unit_double_door``: the doors touch. A tool pointing into the right door (the sibling of the task's
+    left door) 5 mm further out than the nearest it may come without the clearance: free, but in collision while
+    keep_gripper_clear is on; the same in front of the left door (the task's own part) is free either way."""
+    import thirdparty
+    o = thirdparty.build_object(thirdparty.spec_named("kitchen_unit_double_door"), tmp_path)
+    kin = robot_kinematics(robot)
+    scene = read_scene_urdf(o.urdf)
+    left, right = o.fronts[0], o.fronts[1]
+    h = find_handle(scene, OpenTask("door", left.joint), {}, PlannerConfig())
+    world = PlanningWorld(kin, scene, left.joint, set(h.handle_geoms), {}, 0.01)
+    yaw = np.deg2rad(o.spec.place[2])
+    out = np.array([np.sin(yaw), -np.cos(yaw), 0.0])            # the fronts' outward normal
+
+    def closest_free(front) -> np.ndarray:
+        """A configuration with the tool pointing into ``front``'s panel 5 mm out of the nearest free one."""
+        link = scene.T_world_link(front.moving_link, {})
+        panel = scene.links[front.moving_link].collisions[0]
+        p = (link @ panel.T_link_shape)[:3, 3] + np.array([0, 0, 0.15])   # above the handle, on the panel
+        T = np.eye(4)
+        T[:3, 0], T[:3, 2] = [0, 0, 1], -out
+        T[:3, 1] = np.cross(T[:3, 2], T[:3, 0])
+        base = p[:2] + 0.7 * out[:2]
+        q = robot.q_with_base(robot.home_q, base[0], base[1], np.arctan2(-out[1], -out[0]))
+        arm = np.zeros(robot.dof, bool)
+        arm[3:] = True
+
+        def at(d, q):
+            T[:3, 3] = p + d * out
+            r = solve_ik(kin.tool_pose_jacobian, T, q, kin.lower, kin.upper, arm, restarts=6,
+                         rng=np.random.default_rng(0), accept=lambda x: not kin.self_collision(x))
+            assert r.success
+            return r.q
+
+        lo, hi = 0.0, 0.2                                          # tool distances (m): in collision / free
+        for _ in range(12):
+            d = (lo + hi) / 2
+            q = at(d, q)
+            lo, hi = (lo, d) if not world.in_collision(q, 0.0) else (d, hi)
+        return at(hi + 0.005, q)
+
+    q_right = closest_free(right)
+    assert not world.in_collision(q_right, 0.0), world.colliding_pairs(q_right, 0.0)
+    world.keep_gripper_clear(True)
+    assert world.in_collision(q_right, 0.0)
+    pairs = world.colliding_pairs(q_right, 0.0)
+    assert pairs and all(("finger" in a or "hand" in a) and b.startswith(f"scene::{right.moving_link}") for a, b in pairs)
+    world.keep_gripper_clear(False)
+    assert not world.in_collision(q_right, 0.0)
+    q_left = closest_free(left)
+    world.keep_gripper_clear(True)
+    assert not world.in_collision(q_left, 0.0)

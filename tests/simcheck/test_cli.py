@@ -143,7 +143,7 @@ def test_scene_joints_in_world_frame():
     assert joints[DOOR].axis_world == pytest.approx([0, 0, -1]) and joints[DOOR].origin_world == pytest.approx([1.25, 0.38, 0])
 
 
-def test_a_drawer_without_any_handle_exits_2_naming_the_joint(tmp_path, capsys):
+def test_a_drawer_without_any_handle_is_a_verdict_naming_what_blocks_its_edges(tmp_path):
     import xml.etree.ElementTree as ET
     tree = ET.parse(CAB)
     root = tree.getroot()
@@ -151,9 +151,11 @@ def test_a_drawer_without_any_handle_exits_2_naming_the_joint(tmp_path, capsys):
     root.remove(next(j for j in root.findall("joint") if j.get("name") == HANDLE))
     tree.write(tmp_path / "no_handle.urdf")
     assert main(["certify", str(tmp_path / "no_handle.urdf"), "--task", f"open-drawer:{DRAWER}",
-                 "--out", str(tmp_path / "o")]) == 2
-    err = capsys.readouterr().err
-    assert "no handle found" in err and DRAWER in err
+                 "--out", str(tmp_path / "o"), "--no-images"]) == 1
+    t = json.loads((tmp_path / "o" / "certificate.json").read_text())["tasks"][0]
+    # no handle: the panel's edges are pinched, but the closed drawer's front has the carcass behind every edge
+    assert t["status"] == "unreachable" and "front panel can be pinched" in t["reason"], t["reason"]
+    assert "scene::cabinet1_body10" in t["reason"]
 
 
 def test_robot_spec_file_round_trips_the_default_robot(tmp_path):

@@ -13,7 +13,8 @@ CASES = [("kitchen_unit_double_door", 1),   # mesh handle, opens toward negative
          ("dresser_six", 4),                # mesh handle drawer, negative range, touching fronts, no inertials
          ("microwave_left_hinge", 0),       # 100 deg range, negative
          ("nightstand", 1),                 # a knob as its own link; the door opens toward negative values
-         ("microwave_continuous", 0)]       # a continuous hinge (pinocchio stores it as cos, sin)
+         ("microwave_continuous", 0),       # a continuous hinge (pinocchio stores it as cos, sin)
+         ("wall_cabinet_finger_pull", 0)]   # no handle: the door's edge overhanging the carcass is pinched
 
 
 @pytest.fixture(scope="module")
@@ -50,3 +51,13 @@ def test_an_estimate_whose_hinge_passes_through_the_handle_is_not_planned_never_
     est = wrong_estimate(o.urdf, f.joint, "axis30", tmp_path / "wrong.urdf")
     t = certify(est, [f.task], against=o.urdf, images=False).tasks[0]
     assert t.status.value == "not_planned" and "does not move when the joint opens" in t.reason
+
+
+def test_a_front_whose_edges_cannot_be_pinched_says_what_is_in_the_way(tmp_path):
+    """``sink_base_no_handles``: no handle, and every edge of the closed door has the carcass or the touching
+    sibling door behind or beside it: a verdict of the robot (unreachable) naming the sibling, not exit 2."""
+    o = thirdparty.build_object(thirdparty.spec_named("sink_base_no_handles"), tmp_path)
+    t = certify(o.urdf, [o.fronts[0].task], images=False).tasks[0]
+    assert t.status.value == "unreachable", t.reason
+    assert "no edge" not in t.reason and "20 mm front panel can be pinched" in t.reason
+    assert "scene::DoorRight1" in t.reason
