@@ -18,6 +18,7 @@ import time
 import numpy as np
 
 from planners.config import PlannerConfig, default_amount
+from planners.end_reach import END_SAMPLES, end_reach
 from planners.errors import HandleStaysPutError, PlannerInputError, TaskJointError
 from planners.handle import find_handle
 from planners.ik import solve_ik
@@ -200,6 +201,22 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
                       segments=tuple(segments), T_world_base_stand=stand.T_world_base, T_link_grasp=T_link_grasp,
                       method=method)
     status, reason = failures[0] if len(failures) == 1 else failures[-1]
+    if all(f[0] is PlanStatus.OPENING_FAILED for f in failures):
+        # every grasp was reached but no opening followed: is the end of the opening out of the robot's reach?
+        probe = np.random.default_rng(seed)          # its own stream: the plan's is untouched
+        ends = [(end_reach(kin, world, T_paths[gi][-1], s_path[-1], cfg, probe), gi)
+                for gi in dict.fromkeys(st.grasp_index for st in stands[:len(failures)])]
+        if not any(e.reached for e, _ in ends):
+            e, gi = min(ends, key=lambda eg: eg[0].miss)
+            T_end = T_paths[gi][-1]
+            pose = (f"tool at {np.round(T_end[:3, 3], 3).tolist()}, approaching "
+                    f"{np.degrees(np.arcsin(np.clip(T_end[2, 2], -1, 1))):+.0f} deg from level")
+            why = (f"nearest miss {e.miss:.3f} m" if e.miss > cfg.track_pos_tol else
+                   f"within reach, but every such configuration collides ({e.collides_with})")
+            return result(PlanStatus.NO_STAND_POSE, f"{task.kind} {task.joint!r}: the end of the opening is out of the "
+                          f"robot's reach: none of {END_SAMPLES} base poses sampled around it holds the handle there "
+                          f"({pose}; {why}); {reason} ({summary}; tried {len(failures)} stand poses)",
+                          nearest_miss=e.miss, T_world_base_stand=stands[0].T_world_base)
     return result(status, f"{task.kind} {task.joint!r}: {reason} ({summary}; tried {len(failures)} stand poses)",
                   T_world_base_stand=stands[0].T_world_base)
 

@@ -66,3 +66,15 @@ def test_a_robot_spec_without_the_torso_lift_cannot_reach_the_wall_cabinet(tmp_p
     urdf = single_front_urdf(tmp_path / "wall.urdf", **FRONTS["high_wall_cabinet"])
     code, t = _certify(urdf, f"open-door:{DOOR}", tmp_path / "o", "--robot", str(tmp_path / "no_lift.yaml"))
     assert code == 1 and t["status"] == "unreachable" and t["nearest_miss"] > 0.05, t["reason"]
+
+
+def test_a_dishwasher_door_pulled_to_its_default_amount_is_unreachable_at_the_end_of_its_swing(tmp_path):
+    """At its default amount (75 deg) the bottom-hinged door's handle ends under the door 0.2 m above the floor,
+    facing down: held from below, the hand would be under the floor. Every stand pose reaches the grasp, no
+    opening is followed to the end, and no base pose sampled around the end holds the tool there: a verdict of
+    the robot (unreachable, its nearest miss), not a failed articulation."""
+    urdf = single_front_urdf(tmp_path / "dishwasher.urdf", **FRONTS["dishwasher"])
+    code, t = _certify(urdf, f"open-door:{DOOR}", tmp_path / "o")
+    assert code == 1 and t["status"] == "unreachable", t["reason"]
+    assert "the end of the opening is out of the robot's reach" in t["reason"]
+    assert t["nearest_miss"] > 0.003
