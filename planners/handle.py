@@ -378,8 +378,8 @@ def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kin
     """Candidate ``(4, 4)`` world grasp frames at ``p`` approaching along ``-n`` with x along the bar.
 
     In order of preference: tilted (horizontal bars only) then level; at the bar centre, then held
-    ``backoff`` metres further out (a short knob close to the part's face leaves no room for the fingertips);
-    each also turned half a turn about the approach axis. ``swing`` (rad, up positive): how much the
+    ``backoff`` metres further out (a short knob close to the part's face leaves no room for the fingertips;
+    a knob, ``bar_axis`` None, is held level there); each also turned half a turn about the approach axis. ``swing`` (rad, up positive): how much the
     approach's elevation changes over the opening (a door hinged at the bottom turns it up, a flap hinged
     at the top down); beyond :data:`_SWING_CENTRED` a horizontal bar is first grasped tilted by
     ``tilt + swing / 2`` downward, so the approach is tilted by ``tilt`` half-way through the swing.
@@ -387,6 +387,7 @@ def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kin
     z = -n
     ez = np.array([0.0, 0.0, 1.0])
     x = None
+    knob = bar_axis is None
     if bar_axis is not None:
         x = bar_axis - (bar_axis @ z) * z
         if np.linalg.norm(x) < 0.3:
@@ -405,7 +406,9 @@ def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kin
             rotations.insert(0, R_about(x, down * (tilt + swing / 2)) @ R0)
     out = []
     for depth in (0.0, backoff):
-        for R in rotations:
+        # a knob held at its cap's outer face is held level: tilted there, the lower fingertip lands on the cap's
+        # front rim instead of its pad (kitchen 3's cabinet1_drawer2 with plan seeds 3 and 4, 49 deg off the pad)
+        for R in rotations if depth == 0.0 or not knob else rotations[-1:]:
             for flip in (False, True):
                 T = np.eye(4)
                 T[:3, :3] = R @ np.diag([-1.0, -1.0, 1.0]) if flip else R

@@ -89,3 +89,17 @@ def test_a_handle_exported_in_one_mesh_with_its_panel_is_found_on_the_surface(k,
     assert abs(T[:3, 0] @ (T_body[:3, :3] @ bar)) > 0.95
     p_obj = np.linalg.solve(T_body, np.append(T[:3, 3], 1.0))[:3]
     assert p_obj[1] + 0.5 == pytest.approx(-0.02 - 0.035, abs=0.004)  # 3.5 cm out of the 2 cm panel (depth 0.5)
+
+
+def test_a_knob_held_at_its_cap_s_outer_face_is_held_level(tmp_path):
+    """A drawer knob: the centred grasps come tilted 20 deg down, then level; the backed-off ones (at the cap's
+    outer face) only level: tilted there, the lower fingertip lands on the cap's front rim (kitchen 3's
+    ``cabinet1_drawer2`` with plan seeds 3 and 4)."""
+    o = thirdparty.build_object(thirdparty.spec_named("drawer_stack_knobs"), tmp_path)
+    s = read_scene_urdf(o.urdf)
+    h = find_handle(s, OpenTask("drawer", o.fronts[1].joint), {}, CFG)
+    frames = [s.T_world_link(h.moving_link, {}) @ T for T in h.T_link_grasps]
+    tilt = [np.degrees(np.arcsin(-T[2, 2])) for T in frames]
+    assert np.allclose(tilt, [20, 20, 0, 0, 0, 0], atol=1e-6)
+    out = [T[:3, 3] @ -T[:3, 2] for T in frames]           # along the approach, backwards
+    assert out[4] > out[2] + 0.005                         # the last two are backed off
