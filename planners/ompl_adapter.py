@@ -22,6 +22,12 @@ __all__ = ["MotionResult", "plan_joint_path", "plan_constrained_path"]
 log = logging.getLogger(__name__)
 ou.setLogLevel(ou.LOG_WARN)
 
+#: wall-time budget (s) of OMPL's path simplification, which stops by itself once a pass no longer shortens the
+#: path (well under a second of CPU for our paths): the budget only bounds a pathological case. A budget that
+#: can run out (it was 0.5 s) made the plan, hence the certificate, depend on the machine's load: a loaded run
+#: stopped simplifying earlier than an idle one with the same seed.
+SIMPLIFY_BUDGET = 20.0
+
 _PLANNERS = {"RRTConnect": og.RRTConnect, "RRT": og.RRT, "PRM": og.PRM, "RRTstar": og.RRTstar,
              "BKPIECE1": og.BKPIECE1, "LBKPIECE1": og.LBKPIECE1}
 
@@ -94,7 +100,7 @@ def plan_joint_path(start: np.ndarray, goal: np.ndarray, lower: np.ndarray, uppe
         if not ss.haveExactSolutionPath():
             return MotionResult(False, np.zeros((0, dof)), f"{planner} found no path in {time_limit:.1f} s "
                                 f"({status})", time.perf_counter() - t0)
-        ss.simplifySolution(min(0.5, time_limit))
+        ss.simplifySolution(SIMPLIFY_BUDGET)
         p = ss.getSolutionPath()
         path = np.array([[p.getState(k)[i] for i in range(dof)] for k in range(p.getStateCount())])
         del p
@@ -153,7 +159,7 @@ def plan_constrained_path(start: np.ndarray, goal: np.ndarray, lower: np.ndarray
         if not ss.haveExactSolutionPath():
             return MotionResult(False, np.zeros((0, n)), f"constrained RRTConnect found no path in "
                                 f"{time_limit:.1f} s ({status})", time.perf_counter() - t0)
-        ss.simplifySolution(min(0.5, time_limit))
+        ss.simplifySolution(SIMPLIFY_BUDGET)
         p = ss.getSolutionPath()
         coarse = np.array([[p.getState(k)[i] for i in range(n)] for k in range(p.getStateCount())])
         steps = int(np.ceil(np.sum(np.max(np.abs(np.diff(coarse, axis=0)), axis=1)) / max_step)) + 1
