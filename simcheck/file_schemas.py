@@ -13,7 +13,8 @@ from pathlib import Path
 
 from planners.task import ACTIONS
 
-__all__ = ["SCENARIO_SCHEMA", "ROBOT_SPEC_SCHEMA", "check_document", "schema_problems", "unknown_key_hint"]
+__all__ = ["SCENARIO_SCHEMA", "ROBOT_SPEC_SCHEMA", "check_document", "read_document", "schema_problems",
+           "unknown_key_hint"]
 
 _NAMES = {"type": "array", "items": {"type": "string"}, "description": "a list of names"}
 _NUMBERS = {"type": "array", "items": {"type": "number"}, "description": "a list of numbers"}
@@ -139,3 +140,16 @@ def check_document(doc, schema: dict, what: str, path: str | Path, error: type[E
     problems = schema_problems(doc, schema)
     if problems:
         raise error(f"{what} {path}: {'; '.join(problems)}")
+
+
+def read_document(path: Path, what: str, error: type[Exception]):
+    """The document in ``path``: JSON for a ``.json`` file, else YAML. Raises ``error("<what> <path> cannot be
+    parsed: ...")`` when it cannot be read or parsed."""
+    try:
+        if path.suffix.lower() == ".json":
+            import json
+            return json.loads(path.read_text())
+        import yaml
+        return yaml.safe_load(path.read_text())
+    except Exception as exc:
+        raise error(f"{what} {path} cannot be parsed: {exc}") from exc

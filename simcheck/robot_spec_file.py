@@ -22,11 +22,10 @@ the closest valid key (:mod:`simcheck.file_schemas`).
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from simcheck.errors import RobotBindingError
-from simcheck.file_schemas import ROBOT_SPEC_SCHEMA, check_document
+from simcheck.file_schemas import ROBOT_SPEC_SCHEMA, check_document, read_document
 
 __all__ = ["load_robot_spec"]
 
@@ -46,14 +45,7 @@ def load_robot_spec(spec: str | None):
     path = Path(spec)
     if not path.is_file():
         raise RobotBindingError(f"robot spec {path} does not exist (use --robot default or a YAML/JSON file)")
-    try:
-        if path.suffix.lower() == ".json":
-            doc = json.loads(path.read_text())
-        else:
-            import yaml
-            doc = yaml.safe_load(path.read_text())
-    except Exception as exc:
-        raise RobotBindingError(f"robot spec {path} cannot be parsed: {exc}") from exc
+    doc = read_document(path, "robot spec", RobotBindingError)
     check_document(doc, ROBOT_SPEC_SCHEMA, "robot spec", path, RobotBindingError)
     doc = dict(doc)
     doc["urdf"] = (path.parent / doc["urdf"]).resolve()

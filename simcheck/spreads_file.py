@@ -28,12 +28,11 @@ the file and the field.
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
 from pathlib import Path
 
 from simcheck.errors import SimcheckInputError
-from simcheck.file_schemas import check_document
+from simcheck.file_schemas import check_document, read_document
 from simcheck.robust_spreads import DEFAULT_SPREADS, JointSpreads, PhysicsRanges, RobotErrors, RobustSpreads
 
 __all__ = ["SPREADS_SCHEMA", "load_spreads", "spreads_yaml"]
@@ -125,14 +124,7 @@ def load_spreads(spreads) -> RobustSpreads:
     if not path.is_file():
         raise SimcheckInputError(f"spreads {path} does not exist (a YAML file of spreads; `simcheck spreads` prints "
                                  "the defaults to start from)")
-    try:
-        if path.suffix.lower() == ".json":
-            doc = json.loads(path.read_text())
-        else:
-            import yaml
-            doc = yaml.safe_load(path.read_text())
-    except Exception as exc:
-        raise SimcheckInputError(f"spreads {path} cannot be parsed: {exc}") from exc
+    doc = read_document(path, "spreads", SimcheckInputError)
     doc = {} if doc is None else doc
     check_document(doc, SPREADS_SCHEMA, "spreads", path, SimcheckInputError)
     base = DEFAULT_SPREADS
