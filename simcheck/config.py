@@ -155,6 +155,9 @@ class CriteriaConfig:
             slides in the fingers (``grasp_held``). 0.002: PyBullet holds a loaded joint within a fraction
             of a millimetre of its limit.
         joint_limit_tolerance: maximum excursion of a robot joint beyond its URDF limits, rad or m.
+        robot_effort_share: largest share of its URDF effort limit a robot joint's motor may apply, averaged
+            over ``PhysicsConfig.grasp_force_window`` (0.99: held at its limit -- the simulated motor is capped
+            at exactly 1 -- the joint no longer follows the plan; a passing step-long spike averages out).
         plan_penetration_tolerance: penetration depth, metres, above which a state of the densely
             interpolated plan counts as colliding in the independent PyBullet re-check.
         recheck_resolution: maximum joint step, rad or m, between re-checked states of the plan.
@@ -178,7 +181,7 @@ class CriteriaConfig:
     """
 
     name: str = "partscene-default"
-    version: str = "2.1"
+    version: str = "2.2"
     opened_fraction: float = 0.9
     opened_overshoot: float = 0.1
     settled_linear_speed: float = 0.05
@@ -190,6 +193,7 @@ class CriteriaConfig:
     grasp_safety_factor: float = 2.0
     end_stop_tolerance: float = 0.002
     joint_limit_tolerance: float = 0.01
+    robot_effort_share: float = 0.99
     plan_penetration_tolerance: float = 0.005
     recheck_resolution: float = 0.02
     max_waypoint_gap: float = 0.15
@@ -217,7 +221,7 @@ CRITERIA_UNITS = {"opened_fraction": "", "opened_overshoot": "", "settled_linear
                   "recheck_resolution": "rad or m", "max_waypoint_gap": "rad or m", "acceleration_window": "s",
                   "articulation_tolerance": "m or rad", "rest_contact_slack": "m",
                   "closed_range_fraction": "", "closed_gap_prismatic": "m", "closed_gap_revolute": "rad",
-                  "grasp_safety_factor": "", "end_stop_tolerance": "m or rad"}
+                  "grasp_safety_factor": "", "end_stop_tolerance": "m or rad", "robot_effort_share": ""}
 
 DEFAULT_PHYSICS = PhysicsConfig()
 DEFAULT_CRITERIA = CriteriaConfig()

@@ -19,7 +19,7 @@ __all__ = ["CriterionResult", "at_release", "at_end_stop", "opened_amount", "ope
            "handle_path_deviation", "settled_linear_speed",
            "settled_angular_speed", "unexpected_contact_force", "unexpected_contact_depth", "rest_contact_penetration", "grasp_held", "grasp_force",
            "interaction_force",
-           "robot_joint_limits", "plan_found", "plan_collision_free", "rollout_criteria", "FLOOR"]
+           "robot_joint_limits", "robot_joint_effort", "plan_found", "plan_collision_free", "rollout_criteria", "FLOOR"]
 
 FLOOR = "floor"
 
@@ -342,6 +342,27 @@ def robot_joint_limits(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> Crit
                   f"robot joint {name} {how} {value:.3f} {unit} beyond its limits at t={r.t[k]:.2f} s")
 
 
+def robot_joint_effort(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
+    """Largest share of its effort limit, over the whole task, that a robot joint's motor torque (force)
+    reached, averaged over ``PhysicsConfig.grasp_force_window`` (the recorded ``robot_effort``). At its limit
+    the motor cannot hold the joint on its target: the arm yields and no longer follows the plan -- a wrist
+    joint pushed back by a door whose hinge is not where the plan assumed keeps the grasp's pull just below
+    what its torque allows, however wrong the estimate -- and a real arm stops (Franka's joint torque reflex).
+    Threshold ``c.robot_effort_share``; 0 with the detail "not recorded" for rollouts recorded without it."""
+    desc = "largest motor torque of a robot joint (mean over 50 ms) / its effort limit"
+    effort = np.asarray(r.robot_effort, dtype=float)
+    if not effort.size or not np.isfinite(effort).any():
+        return _judge("robot_joint_effort", 0.0, c.robot_effort_share, "<=", "", desc, "", "not recorded")
+    k, j = np.unravel_index(np.nanargmax(effort), effort.shape)
+    value = float(effort[k, j])
+    name = r.robot_joint_names[j] if r.robot_joint_names else "?"
+    seg = r.segment_names[r.segment[k]] if 0 <= r.segment[k] < len(r.segment_names) else "settle"
+    return _judge("robot_joint_effort", value, c.robot_effort_share, "<=", "", desc,
+                  f"robot joint {name} was held at {value:.0%} of its effort limit at t={r.t[k]:.2f} s during {seg}: "
+                  f"the arm could not follow the plan (the estimated articulation does not match how the part "
+                  f"moves, or the part is blocked)")
+
+
 def interaction_force(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
     """Largest force, N, the robot applied to the task's part other than by squeezing it between its
     fingers: per sample, the grasp's force (50 ms mean) plus the contact forces of every robot link that
@@ -384,4 +405,4 @@ def rollout_criteria(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> tuple[
     return (grasp_held(r, c), grasp_force(r, c), *reached,
             handle_path_deviation(r, c), unexpected_contact_force(r, c), unexpected_contact_depth(r, c),
             rest_contact_penetration(r, c), interaction_force(r, c), settled_linear_speed(r, c),
-            settled_angular_speed(r, c), robot_joint_limits(r, c))
+            settled_angular_speed(r, c), robot_joint_limits(r, c), robot_joint_effort(r, c))

@@ -44,7 +44,7 @@ from simcheck.grasp import grasp_formation
 from simcheck.rollout import Rollout
 from simcheck.world import World
 
-__all__ = ["execute_task", "handle_link_for", "moving_link_for", "timed_waypoints", "speed_limits",
+__all__ = ["execute_task", "handle_link_for", "moving_link_for", "timed_waypoints", "waypoint_timing", "speed_limits",
            "command_trajectory"]
 
 log = logging.getLogger(__name__)
@@ -65,15 +65,70 @@ def handle_link_for(world: World, joint: str, preferred: str | None = None) -> s
     return handle_link(read_scene_urdf(world.scene_urdf), joint)
 
 
-def timed_waypoints(q: np.ndarray, vmax: np.ndarray, min_dt: float) -> np.ndarray:
+def timed_waypoints(q: np.ndarray, vmax: np.ndarray, min_dt: float, ramp: float = 0.0,
+                    tool: np.ndarray | None = None, control_dt: float = 0.0) -> np.ndarray:
     """(n,) times, seconds, at which to reach the (n, dof) waypoints ``q`` so that joint j never
-    exceeds ``vmax[j]`` (rad/s or m/s) on the straight segments between waypoints; starts at 0."""
+    exceeds ``vmax[j]`` (rad/s or m/s) on the straight segments between waypoints; starts at 0.
+
+    With ``ramp`` > 0 s the speed along the path also changes at most as fast as the executor's ramp at a
+    segment's ends changes it (from rest to full speed in ``ramp`` seconds; :func:`_ramped`), and it is
+    slowed before a waypoint where the velocity must change at once (see :func:`waypoint_timing`, which
+    also gives how the executor accelerates inside each piece)."""
+    return waypoint_timing(q, vmax, min_dt, ramp, tool, control_dt)[0]
+
+
+def waypoint_timing(q: np.ndarray, vmax: np.ndarray, min_dt: float, ramp: float = 0.0,
+                    tool: np.ndarray | None = None, control_dt: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """How the executor times a path of (n, dof) waypoints ``q``: ``(times (n,) s, rho (n-1,))``.
+
+    Without ``ramp`` every piece between waypoints is run at constant velocity, as fast as ``vmax`` (dof,)
+    allows (at least ``min_dt`` s): ``rho`` is 0.5. With ``ramp`` > 0 s the path speed ``sigma`` (1: the
+    limiting joint at its ``vmax``) is continuous inside the path and changes by at most 1 per ``ramp``
+    seconds -- the acceleration of the segment's own start (:func:`_ramped`), which a real arm's trajectory
+    generator also bounds: a grasped part is not jerked to another speed -- and it is lowered at a waypoint
+    where the velocity turns (it changes there within one control step):
+
+    * the tool's velocity (``tool`` (n, 3) planned tool positions, m) changes there by at most the tool's
+      full speed per ``ramp`` times ``control_dt`` (what the grasped part feels: a door whose planned arc
+      hands over from the base to the arm slows before the hand-over instead of being stopped in one step);
+    * each joint's velocity changes by at most its full speed per ``ramp`` times half of the two pieces
+      meeting there (a joint that reverses slows down first; the arm's own small zig-zags along a dense path
+      are not stopped for).
+
+    Inside piece i the path accelerates uniformly from ``sigma`` at its start to ``sigma`` at its end: its
+    fraction covered after a share ``x`` of its duration is ``2 rho x + (1 - 2 rho) x^2``,
+    ``rho = sigma_start / (sigma_start + sigma_end)``."""
     q = np.atleast_2d(q)
     if len(q) == 1:
-        return np.zeros(1)
-    dq = np.abs(np.diff(q, axis=0))
-    dt = np.maximum((dq / vmax[None, :]).max(axis=1), min_dt)
-    return np.concatenate([[0.0], np.cumsum(dt)])
+        return np.zeros(1), np.zeros(0)
+    w = np.diff(q, axis=0) / vmax[None, :]
+    L = np.abs(w).max(axis=1)
+    dt = np.maximum(L, min_dt)
+    rho = np.full(len(dt), 0.5)
+    moving = np.flatnonzero(L > 1e-12)
+    if ramp > 0 and len(moving) > 1:
+        Lm = L[moving]
+        u = w[moving] / Lm[:, None]
+        cap2 = np.ones(len(moving) + 1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            turn = np.abs(np.diff(u, axis=0)).max(axis=1)
+            cap2[1:-1] = np.minimum(1.0, (Lm[:-1] + Lm[1:]) / (2.0 * ramp * turn))
+            if tool is not None and control_dt > 0:
+                g = np.diff(np.asarray(tool, dtype=float), axis=0)[moving] / Lm[:, None]  # m per s at sigma 1
+                top = float(np.linalg.norm(g, axis=1).max())
+                jump = np.linalg.norm(np.diff(g, axis=0), axis=1)
+                if top > 0:
+                    cap2[1:-1] = np.minimum(cap2[1:-1], (top / ramp * control_dt / jump) ** 2)
+        s2 = cap2.tolist()
+        grow = (2.0 * Lm / ramp).tolist()
+        for k in range(1, len(s2)):                 # speeding up: sigma^2 grows by at most 2 L / ramp a piece
+            s2[k] = min(s2[k], s2[k - 1] + grow[k - 1])
+        for k in range(len(s2) - 2, -1, -1):        # slowing down, backwards
+            s2[k] = min(s2[k], s2[k + 1] + grow[k])
+        sigma = np.sqrt(np.asarray(s2))
+        dt[moving] = np.maximum(2.0 * Lm / (sigma[:-1] + sigma[1:]), min_dt)
+        rho[moving] = sigma[:-1] / (sigma[:-1] + sigma[1:])
+    return np.concatenate([[0.0], np.cumsum(dt)]), rho
 
 
 class _Recorder:
@@ -102,6 +157,9 @@ class _Recorder:
         self.filled = 0
         self.mean = 0.0                                 # running mean of the history (0 when detached)
         self.peak = 0.0                                 # largest running mean since the last sample
+        dof = len(world.robot_spec.joint_names)
+        self.effort_history = np.zeros((self.window, dof))  # per step: |motor torque| / effort limit
+        self.effort_peak = np.zeros(dof)                 # largest running mean since the last sample
 
     def grasp_point(self, T_world_handle: np.ndarray | None = None) -> np.ndarray:
         """(3,) world position of the grasped point of the handle (NaN when not attached);
@@ -133,11 +191,18 @@ class _Recorder:
         self.mean = float(self.history.sum()) / self.window     # steps before the grasp count as 0
         self.peak = max(self.peak, self.mean)
 
+    def track_effort(self) -> None:
+        """Read the robot motors' effort of this step into their running means over the force window."""
+        self.effort_history[self.steps % self.window] = self.world.robot_effort_share()
+        mean = self.effort_history.sum(axis=0) / self.window
+        np.maximum(self.effort_peak, mean, out=self.effort_peak)
+
     def after_step(self) -> None:
         w = self.world
         self.t += self.config.time_step
         self.steps += 1
         self.track_force()
+        self.track_effort()
         if self.steps % self.config.contact_every == 0:
             for c in w.robot_contacts(self.config.contact_tolerance):
                 key = (c.link_a, c.link_b)
@@ -176,6 +241,8 @@ class _Recorder:
         r["grasp_active"].append(w.attached)
         r["grasp_force"].append(self.peak)
         self.peak = self.mean
+        r["robot_effort"].append(self.effort_peak.copy())
+        self.effort_peak = self.effort_history.sum(axis=0) / self.window
         r["finger_q"].append(w.finger_q())
         r["finger_contacts"].append(w.finger_contact_count(self.handle))
         r["rest_contact_excess"].append(self.rest_excess)
@@ -339,7 +406,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
         opening_axis=None if opening_axis is None else np.asarray(opening_axis, dtype=float).reshape(3),
         holding_force=float(rec.holding_force), opening_segment=opening, release_segment=plan.release_segment,
         closing=bool(closing), joint_range=float(joint_range),
-        object_limits=object_limits,
+        object_limits=object_limits, robot_effort=np.asarray(rows["robot_effort"], dtype=float),
         finger_q=np.asarray(rows["finger_q"]).reshape(len(rows["t"]), -1),
         finger_contacts=np.asarray(rows["finger_contacts"], dtype=int),
         contact_sample=np.asarray([c[0] for c in cr], dtype=int),
@@ -413,9 +480,12 @@ def _targets(seg: Segment, vmax: np.ndarray, config: PhysicsConfig):
     """
     if seg.t is not None:                     # a given plan's own timing, executed as it is
         times, ramp = seg.t, 0.0
+        rho = np.full(max(len(times) - 1, 0), 0.5)
         n_steps = int(np.ceil(times[-1] / config.time_step - 1e-9))
     else:
-        times = timed_waypoints(seg.q, vmax, config.time_step)
+        tool_path = seg.T_world_tool[:, :3, 3] if seg.T_world_tool is not None else None
+        times, rho = waypoint_timing(seg.q, vmax, config.time_step, config.ramp_time, tool_path,
+                                     config.time_step * config.control_every)
         ramp = min(config.ramp_time, times[-1])
         n_steps = int(np.ceil((times[-1] + ramp) / config.time_step))
     k = np.arange(1, n_steps + 1, config.control_every)
@@ -427,9 +497,11 @@ def _targets(seg: Segment, vmax: np.ndarray, config: PhysicsConfig):
     tk, rate = _ramped(np.minimum(k * config.time_step, times[-1] + ramp), times[-1], ramp)
     j = np.clip(np.searchsorted(times, tk, side="right") - 1, 0, len(times) - 2)
     span = times[j + 1] - times[j]
-    a = ((tk - times[j]) / span)[:, None]
+    x = np.clip((tk - times[j]) / span, 0.0, 1.0)
+    r = rho[j]
+    a = (2.0 * r * x + (1.0 - 2.0 * r) * x ** 2)[:, None]       # uniform acceleration inside the piece
     q = (1 - a) * seg.q[j] + a * seg.q[j + 1]
-    qd = (seg.q[j + 1] - seg.q[j]) / span[:, None] * rate[:, None]
+    qd = (seg.q[j + 1] - seg.q[j]) / span[:, None] * ((2.0 * r + 2.0 * (1.0 - 2.0 * r) * x) * rate)[:, None]
     if seg.t is not None:
         # a given plan: at a waypoint's own time the velocity is the slope between its neighbours (exact for a
         # path sampled from a smooth one), at the last waypoint 0 (the robot stops there)

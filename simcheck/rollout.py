@@ -87,6 +87,10 @@ class Rollout:
             minus what it moved.
         joint_range: the executed joint's range (upper - lower, m or rad; NaN: unknown), which sets how
             near its closed value a closed part must be.
+        robot_effort: (n, dof) each robot joint's motor torque (force), N*m (N), as a share of its URDF effort
+            limit: the largest running mean over ``PhysicsConfig.grasp_force_window`` since the previous
+            sample (1: the motor held at its limit, where the simulated joint stops following its target;
+            NaN in rollouts recorded before it existed).
     """
 
     joint: str
@@ -141,6 +145,7 @@ class Rollout:
     closing: bool = False
     joint_range: float = float("nan")
     object_limits: np.ndarray | None = None
+    robot_effort: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         n = len(self.t)
@@ -153,10 +158,12 @@ class Rollout:
             object.__setattr__(self, "opening_axis", np.full(3, np.nan))
         if self.object_limits is None:
             object.__setattr__(self, "object_limits", np.full(2, np.nan))
+        if self.robot_effort is None:                              # rollouts recorded before it existed
+            object.__setattr__(self, "robot_effort", np.full(np.shape(self.robot_q), np.nan))
         for name in ("segment", "robot_q", "object_q", "object_qd", "T_world_handle", "tool_pos", "grasp_point",
                      "planned_tool_pos", "planned_object_q", "link_speed", "link_angular_speed", "grasp_active",
                      "grasp_force", "grasp_turn", "robot_q_target", "finger_q", "finger_contacts",
-                     "rest_contact_excess"):
+                     "rest_contact_excess", "robot_effort"):
             if len(getattr(self, name)) != n:
                 raise RolloutFormatError(f"rollout of joint {self.joint!r}: {name} has {len(getattr(self, name))} "
                                          f"samples, t has {n}")

@@ -159,6 +159,12 @@ class World:
         states = pb.getJointStates(self.robot, self._robot.q_index, physicsClientId=self.client)
         return np.array([s[0] for s in states], dtype=float)
 
+    def robot_effort_share(self) -> np.ndarray:
+        """(dof,) the motor torque (force for a prismatic joint) each controlled joint applied in the last step,
+        as a share of its effort limit (the URDF effort the motor is capped at, :meth:`command_robot`)."""
+        states = pb.getJointStates(self.robot, self._robot.q_index, physicsClientId=self.client)
+        return np.abs(np.array([s[3] for s in states], dtype=float)) / np.asarray(self._robot.forces, dtype=float)
+
     def finger_q(self) -> np.ndarray:
         """(n_fingers,) finger joint positions."""
         states = pb.getJointStates(self.robot, self._robot.finger_index, physicsClientId=self.client)

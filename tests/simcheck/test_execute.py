@@ -46,7 +46,7 @@ def test_certificate_file_round_trips_and_records_provenance(good):
     cert, out = good
     back = Certificate.load(out / "certificate.json")
     assert back.to_dict() == cert.to_dict()
-    assert back.criteria["name"] == "partscene-default" and back.criteria["version"] == "2.1"
+    assert back.criteria["name"] == "partscene-default" and back.criteria["version"] == "2.2"
     assert set(back.versions) >= {"pybullet", "pinocchio", "ompl", "numpy", "partscene"}
     assert back.seeds == {"seed": 0}
     assert back[DRAWER].timings["execute"] > 0 and back[DRAWER].timings["simulated"] > 3.0
