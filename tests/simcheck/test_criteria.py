@@ -257,3 +257,16 @@ def test_criterion_json_round_trip_keeps_infinite_values_failing():
     assert d["value"] is None                               # JSON has no infinity
     back = CriterionResult.from_dict(d)
     assert math.isinf(back.value) and not back.passed and back.name == "grasp_held"
+
+
+def test_robot_joint_effort_fails_when_a_joint_is_held_at_its_limit(good):
+    from simcheck.criteria import robot_joint_effort
+
+    assert robot_joint_effort(good).passed and robot_joint_effort(good).detail == "not recorded"
+    effort = np.full(np.shape(good.robot_q), 0.3)
+    ok = robot_joint_effort(with_(good, robot_effort=effort))
+    assert ok.passed and ok.value == pytest.approx(0.3) and ok.unit == ""
+    effort[len(effort) // 2, 1] = 1.0
+    bad = robot_joint_effort(with_(good, robot_effort=effort))
+    assert not bad.passed and bad.threshold == pytest.approx(0.99)
+    assert good.robot_joint_names[1] in bad.detail and "effort limit" in bad.detail

@@ -124,3 +124,26 @@ def test_a_deep_unexpected_contact_fails():
     assert t.status is Outcome.FAILED
     deep = t.criterion("unexpected_contact_depth")
     assert not deep.passed and deep.value > 0.005 and "cabinet1" in deep.detail
+    assert not t.criterion("unexpected_contact_force").passed
+
+
+def test_a_drawer_pulled_past_the_request_fails():
+    t = _certify(dataclasses.replace(drawer_plan(amount=0.3), amount=0.2))      # asks 0.2 m, pulls 0.3 m
+    assert t.status is Outcome.FAILED
+    over = t.criterion("opened_overshoot")
+    assert not over.passed and over.value == pytest.approx(0.5, abs=0.05)
+    assert t.criterion("grasp_held").passed and t.criterion("grasp_force").passed
+
+
+def test_a_joint_held_at_its_effort_limit_fails(tmp_path):
+    # a 6 deg axis error pulls the hand sideways; a y joint of 15 N is pushed off its target instead of holding
+    urdf = tmp_path / "weak_y.urdf"
+    text, n = re.subn(r'(<joint name="y_joint".*?effort=")2000(")', r"\g<1>15\g<2>", ROBOT.urdf.read_text())
+    assert n == 1
+    urdf.write_text(text)
+    weak = dataclasses.replace(ROBOT, urdf=urdf)
+    t = _certify(drawer_plan(axis_deg=6.0), robot=weak)
+    assert t.status is Outcome.FAILED
+    effort = t.criterion("robot_joint_effort")
+    assert not effort.passed and effort.value >= 0.99 and "y_joint" in effort.detail
+    assert _certify(drawer_plan(), robot=weak).criterion("robot_joint_effort").passed   # the straight pull holds
