@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from scenes.small_linalg import solve
+
 __all__ = ["IKResult", "pose_error", "rotvec_from_matrix", "solve_ik"]
 
 
@@ -109,7 +111,7 @@ def _dls_step(J: np.ndarray, e: np.ndarray, W: np.ndarray, damp: np.ndarray) -> 
     """Damped least-squares joint step ``(dof,)`` for the task error ``e`` with the columns of ``J`` scaled by
     ``W`` (the square roots of the joint weights)."""
     Jw = J * W
-    return W * (Jw.T @ np.linalg.solve(Jw @ Jw.T + damp, e))
+    return W * (Jw.T @ solve(Jw @ Jw.T + damp, e))
 
 
 def _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping, max_iter, max_step,

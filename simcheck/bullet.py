@@ -16,6 +16,7 @@ import tempfile
 
 import numpy as np
 
+from scenes.small_linalg import inv
 from simcheck.bullet_poses import T_from_pos_quat
 from simcheck.joint_table import JointInfo, joint_table
 
@@ -124,14 +125,16 @@ def movable_joints(client: int, body: int) -> list[int]:
             if pb.getJointInfo(body, j, physicsClientId=client)[2] != pb.JOINT_FIXED]
 
 
-def point_jacobian(client: int, body: int, index: int, p_local: np.ndarray) -> np.ndarray:
+def point_jacobian(client: int, body: int, index: int, p_local: np.ndarray,
+                   movable: list[int] | None = None) -> np.ndarray:
     """(3, n) linear Jacobian, world frame, m per joint unit, of the point ``p_local`` (3,) (link frame, m)
-    of link ``index`` (>= 0) over the n :func:`movable_joints` of ``body`` at its current state."""
-    movable = movable_joints(client, body)
+    of link ``index`` (>= 0) over the n :func:`movable_joints` of ``body`` at its current state
+    (``movable``: that list when the caller keeps it; called every physics step by the grasp spring)."""
+    movable = movable_joints(client, body) if movable is None else movable
     q = [float(st[0]) for st in pb.getJointStates(body, movable, physicsClientId=client)]
     s = pb.getLinkState(body, index, computeForwardKinematics=1, physicsClientId=client)
     T_link_com = T_from_pos_quat(s[2], s[3])
-    p_com = (np.linalg.inv(T_link_com) @ np.append(np.asarray(p_local, dtype=float), 1.0))[:3]
+    p_com = (inv(T_link_com) @ np.append(np.asarray(p_local, dtype=float), 1.0))[:3]
     zero = [0.0] * len(q)
     return np.asarray(pb.calculateJacobian(body, index, p_com.tolist(), q, zero, zero, physicsClientId=client)[0],
                       dtype=float).reshape(3, len(q))

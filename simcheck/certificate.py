@@ -23,6 +23,7 @@ software versions and timings. Written as ``certificate.json`` (atomically) and 
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 from dataclasses import dataclass, field
@@ -228,6 +229,12 @@ def write_json_atomic(path: Path, doc: dict) -> Path:
 
 def software_versions() -> dict:
     """Versions of the software a certificate was judged with (package metadata; "missing" if absent)."""
+    return dict(_software_versions())
+
+
+@functools.lru_cache(maxsize=1)
+def _software_versions() -> dict:
+    """:func:`software_versions`, read once per process (each metadata look-up scans site-packages: ~2 ms)."""
     from importlib.metadata import PackageNotFoundError, version
     out = {}
     for key, dist in (("pybullet", "pybullet"), ("pinocchio", "pin"), ("ompl", "ompl"), ("numpy", "numpy"),

@@ -76,15 +76,17 @@ class Session:
     certificate does not depend on the tasks before it); a scenario runs all its tasks in one Session,
     the executed scene keeping its state from task to task. ``last_rollout`` is the rollout of the last
     task executed (None if it was not executed); ``load_seconds`` the wall time its worlds took to load.
+    Without ``visuals`` the worlds have no visual shapes (faster to load; nothing can be rendered).
     """
 
     def __init__(self, scene: Path, against: Path | None, robot: SimRobot, physics: PhysicsConfig,
-                 gui: bool = False) -> None:
+                 gui: bool = False, visuals: bool = True) -> None:
         t0 = time.perf_counter()
         self.scene, self.against, self.robot, self.physics = scene, against, robot, physics
-        self.plan_world = World(scene, robot, physics, gui=gui and against is None)
+        self.plan_world = World(scene, robot, physics, gui=gui and against is None, visuals=visuals)
         try:
-            self.exec_world = World(against, robot, physics, gui=gui) if against is not None else self.plan_world
+            self.exec_world = (World(against, robot, physics, gui=gui, visuals=visuals) if against is not None
+                               else self.plan_world)
         except Exception:
             self.plan_world.close()
             raise
@@ -411,8 +413,9 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         log.info("removing the previous %s", out_dir / "certificate.json")
         (out_dir / "certificate.json").unlink()
     results = []
+    visuals = out_dir is not None and (images or video)     # key frames and video are the only renderings
     if carry_state:
-        with Session(scene, against, sim_robot, physics, gui=gui) as session:
+        with Session(scene, against, sim_robot, physics, gui=gui, visuals=visuals) as session:
             session.save_plan, session.robot_label = bool(save_plan), _robot_label(save_plan)
             for i, task in enumerate(parsed):
                 start = session.exec_world.robot_q() if i else None
@@ -420,7 +423,7 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
                                          None if i else session.load_seconds))
     else:
         for task in parsed:                       # fresh worlds: a task's verdict never depends on the others
-            with Session(scene, against, sim_robot, physics, gui=gui) as session:
+            with Session(scene, against, sim_robot, physics, gui=gui, visuals=visuals) as session:
                 session.save_plan, session.robot_label = bool(save_plan), _robot_label(save_plan)
                 results.append(_run_task(session, task, planner, seed, criteria, out_dir, images, video, None,
                                          session.load_seconds))

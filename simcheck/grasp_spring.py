@@ -14,6 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from scenes.small_linalg import eigh, inv
+
 __all__ = ["GraspSpring", "spring_force", "cartesian_stiffness", "stable_stiffness"]
 
 
@@ -47,7 +49,7 @@ def cartesian_stiffness(J: np.ndarray, joint_stiffness: np.ndarray) -> np.ndarra
     (m per rad or m) when each joint is held by a spring of ``joint_stiffness`` (n,) N*m/rad (N/m):
     ``(J C_q J^T)^-1`` with ``C_q`` the diagonal joint compliance. Joints left out of ``J`` are rigid."""
     J = np.asarray(J, dtype=float)
-    return np.linalg.inv((J / np.asarray(joint_stiffness, dtype=float)) @ J.T)
+    return inv((J / np.asarray(joint_stiffness, dtype=float)) @ J.T)
 
 
 def stable_stiffness(J: np.ndarray, M: np.ndarray, time_step: float) -> float:
@@ -76,7 +78,7 @@ def spring_force(spring: GraspSpring, p_held: np.ndarray, v_held: np.ndarray, p_
     K = np.asarray(spring.stiffness, dtype=float)
     if K.ndim == 0:
         K = float(K) * np.eye(3)
-    w, V = np.linalg.eigh(K)
+    w, V = eigh(K)
     if w.max() > spring.max_stiffness:
         K = (V * np.minimum(w, spring.max_stiffness)) @ V.T
     stretch = p_tool - p_held

@@ -67,15 +67,16 @@ class LoadedScene:
     rest_contacts: tuple[tuple[str, str, float], ...] = ()
 
 
-def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig) -> LoadedScene:
-    """Load ``scene_urdf`` into ``client`` (see the module docstring).
+def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig, visuals: bool = True) -> LoadedScene:
+    """Load ``scene_urdf`` into ``client`` (see the module docstring); without ``visuals`` the visual shapes
+    are left out (nothing to render then; the physics is the same).
 
     Raises:
         SceneLoadError: PyBullet cannot load the file or a part of it, or it cannot be split (names the file).
     """
     c = client
-    flags = (pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_USE_SELF_COLLISION
-             | pb.URDF_USE_SELF_COLLISION_EXCLUDE_ALL_PARENTS)
+    plain = pb.URDF_USE_INERTIA_FROM_FILE | (0 if visuals else pb.URDF_IGNORE_VISUAL_SHAPES)
+    flags = plain | pb.URDF_USE_SELF_COLLISION | pb.URDF_USE_SELF_COLLISION_EXCLUDE_ALL_PARENTS
     try:
         with c_output_logged(f"loading {scene_urdf}") as said:
             whole = pb.loadURDF(str(scene_urdf), useFixedBase=True, flags=flags, physicsClientId=c)
@@ -100,7 +101,7 @@ def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig) -> LoadedSc
                 with c_output_logged(f"loading part {k} of {scene_urdf}") as said:
                     body = pb.loadURDF(str(f), part.T_world_root[:3, 3].tolist(),
                                        quat_xyzw_from_R(part.T_world_root[:3, :3]), useFixedBase=True,
-                                       flags=flags if part.moving else pb.URDF_USE_INERTIA_FROM_FILE,
+                                       flags=flags if part.moving else plain,
                                        physicsClientId=c)
             except pb.error as exc:
                 raise SceneLoadError(f"PyBullet cannot load a part of scene URDF {scene_urdf}: {exc}"

@@ -1,0 +1,29 @@
+"""scenes.small_linalg: numpy.linalg's results to the bit, numpy's errors on singular input."""
+
+import numpy as np
+import pytest
+
+from scenes import small_linalg
+
+
+@pytest.mark.parametrize("n", [3, 4, 6])
+def test_same_bits_as_numpy_linalg(n):
+    rng = np.random.default_rng(n)
+    for _ in range(200):
+        a = rng.normal(size=(n, n))
+        spd = a @ a.T + 0.01 * np.eye(n)
+        b = rng.normal(size=n)
+        assert np.array_equal(small_linalg.solve(spd, b), np.linalg.solve(spd, b))
+        assert np.array_equal(small_linalg.solve(a, b[:, None]), np.linalg.solve(a, b[:, None]))
+        assert np.array_equal(small_linalg.inv(a), np.linalg.inv(a))
+        w, v = small_linalg.eigh(spd)
+        assert np.array_equal(w, np.linalg.eigh(spd)[0]) and np.array_equal(v, np.linalg.eigh(spd)[1])
+    view = rng.normal(size=(6, 7))[:, 1:]          # strided input, as Jacobian column slices are
+    assert np.array_equal(small_linalg.inv(view), np.linalg.inv(view))
+
+
+def test_singular_matrix_raises_numpys_error():
+    with pytest.raises(np.linalg.LinAlgError):
+        small_linalg.solve(np.zeros((3, 3)), np.ones(3))
+    with pytest.raises(np.linalg.LinAlgError):
+        small_linalg.inv(np.zeros((3, 3)))
