@@ -20,8 +20,11 @@ On load it
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import logging
 import tempfile
+import threading
+from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -90,17 +93,12 @@ def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig, visuals: bo
     static_pose: dict[str, np.ndarray] = {}
     joint_at: dict[str, tuple[int, int]] = {}
     with tempfile.TemporaryDirectory(prefix="partscene_scene_") as tmp:
-        try:
-            parts = scene_bodies(read_urdf(scene_urdf), mesh_dir=tmp)
-        except DescriptionError as exc:
-            raise SceneLoadError(f"cannot split scene URDF {scene_urdf} into bodies: {exc}") from exc
-        for k, part in enumerate(parts):
+        for k, part in enumerate(_bodies(scene_urdf, tmp)):
             f = Path(tmp) / f"body{k}.urdf"
             f.write_text(part.urdf)
             try:
                 with c_output_logged(f"loading part {k} of {scene_urdf}") as said:
-                    body = pb.loadURDF(str(f), part.T_world_root[:3, 3].tolist(),
-                                       quat_xyzw_from_R(part.T_world_root[:3, :3]), useFixedBase=True,
+                    body = pb.loadURDF(str(f), part.position, part.quat_xyzw, useFixedBase=True,
                                        flags=flags if part.moving else plain,
                                        physicsClientId=c)
             except pb.error as exc:
@@ -136,6 +134,55 @@ def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig, visuals: bo
                 for name, info in joints.items()},
         joint_body={name: joint_at[name][0] for name in joints if name in joint_at}, disabled_overlaps=disabled,
         rest_contacts=resting)
+
+
+@dataclass(frozen=True)
+class _Body:
+    """A :class:`simcheck.scene_bodies.SceneBody` as PyBullet loads it: its root's position (3,) m and
+    quaternion (x, y, z, w)."""
+
+    urdf: str
+    position: list
+    quat_xyzw: tuple
+    moving: bool
+    static_ancestors: tuple
+
+
+#: how many scenes' bodies :func:`_bodies` keeps
+BODIES_KEPT = 8
+_kept_bodies: OrderedDict[tuple, tuple] = OrderedDict()
+_kept_lock = threading.Lock()
+
+
+def _bodies(scene_urdf: Path, mesh_dir: str) -> tuple:
+    """The bodies of ``scene_urdf`` (:func:`simcheck.scene_bodies.scene_bodies`, mesh pieces written into
+    ``mesh_dir``). The last :data:`BODIES_KEPT` scenes whose split wrote no mesh piece are kept under the
+    file's path and SHA-256 (a batch certifies many tasks of one scene in one process, each in fresh worlds):
+    an unchanged file is not split again; the same bodies, computed the same way, so the same physics. The key
+    is the URDF's bytes: a moving link's mesh replaced by one of several pieces under an unchanged URDF, within
+    one process, would keep its old (unsplit) body."""
+    path = Path(scene_urdf)
+    try:
+        key = (str(path.absolute()), hashlib.sha256(path.read_bytes()).digest())
+    except OSError:
+        key = None
+    with _kept_lock:
+        kept = _kept_bodies.get(key)
+        if kept is not None:
+            _kept_bodies.move_to_end(key)
+            return kept
+    try:
+        parts = scene_bodies(read_urdf(scene_urdf), mesh_dir=mesh_dir)
+    except DescriptionError as exc:
+        raise SceneLoadError(f"cannot split scene URDF {scene_urdf} into bodies: {exc}") from exc
+    bodies = tuple(_Body(p.urdf, p.T_world_root[:3, 3].tolist(), quat_xyzw_from_R(p.T_world_root[:3, :3]), p.moving,
+                         p.static_ancestors) for p in parts)
+    if key is not None and not any(Path(mesh_dir).iterdir()):     # mesh pieces live only while loading
+        with _kept_lock:
+            _kept_bodies[key] = bodies
+            while len(_kept_bodies) > BODIES_KEPT:
+                _kept_bodies.popitem(last=False)
+    return bodies
 
 
 def _filter_initial_overlaps(client: int, scene_urdf: Path, names: dict[tuple[int, int], str],
