@@ -1,8 +1,9 @@
 """Each rollout criterion FAILS in a real physics run (fixture gantry gripper + cabinet, hand-made plans).
 
 Small scenes, deterministic, a few seconds each: fingers closed on air in front of the bar, a pad on a
-flat drawer front, a pull the gripper cannot hold, a part still moving when the gripper lets go, a
-robot joint driven past its limit, a deep unexpected contact.
+flat drawer front, a pull the gripper cannot hold, a part still moving when the gripper lets go (a drawer
+sliding back, a self-closing door swinging shut), a robot joint driven past its limit, a deep unexpected
+contact, the palm knocking the handle.
 """
 
 import dataclasses
@@ -17,16 +18,19 @@ from simcheck.certification import certify
 from simcheck.execute import execute_task
 from simcheck.world import World
 
-from simcheck_fixture_plans import (CABINET, DRAWER, ROBOT, TOOL_OFFSET, _seg, drawer_plan, fixture_planner,
+from scipy.spatial.transform import Rotation
+
+from simcheck_fixture_plans import (CABINET, DOOR, DRAWER, ROBOT, TOOL_OFFSET, _plan, _seg, drawer_plan, fixture_planner,
                                     line)
 
 BAR_FRONT_X = 0.30          # the fixture drawer's handle bar spans x 0.28-0.30 (closed drawer)
 FINGERTIP_REACH = 0.02      # the gantry's fingertips reach 2 cm past its tool frame along -x
 
 
-def _certify(plan, robot=ROBOT, scene=CABINET):
-    cert = certify(scene, [f"open-drawer:{DRAWER}"], robot=robot, images=False, planner=fixture_planner({DRAWER: plan}))
-    return cert[DRAWER]
+def _certify(plan, robot=ROBOT, scene=CABINET, joint=DRAWER):
+    kind = "door" if joint == DOOR else "drawer"
+    cert = certify(scene, [f"open-{kind}:{joint}"], robot=robot, images=False, planner=fixture_planner({joint: plan}))
+    return cert[joint]
 
 
 def test_fingers_closed_on_air_in_front_of_the_bar_make_no_grasp():
@@ -147,3 +151,73 @@ def test_a_joint_held_at_its_effort_limit_fails(tmp_path):
     effort = t.criterion("robot_joint_effort")
     assert not effort.passed and effort.value >= 0.99 and "y_joint" in effort.detail
     assert _certify(drawer_plan(), robot=weak).criterion("robot_joint_effort").passed   # the straight pull holds
+
+
+def _leaning_heavy_door(tmp_path, lean):
+    """The fixture cabinet leaning back by ``lean`` rad (its door's hinge axis tilted with it) and a 10 kg door:
+    opened, the door's weight swings it shut (a self-closing fridge door, levelled to lean back).
+    Returns (scene path, hinge axis (3,) in the world)."""
+    axis = np.array([np.sin(lean), 0.0, -np.cos(lean)])
+    text, n = re.subn(r'(<joint name="cabinet1_door4_joint".*?<axis xyz=")0 0 -1(")',
+                      rf"\g<1>{axis[0]:.6f} 0 {axis[2]:.6f}\g<2>", CABINET.read_text())
+    text, m = re.subn(r'(<link name="cabinet1_door4">\s*<inertial><origin xyz="0.01 0.28 0"/><mass value=")3.0(")',
+                      r"\g<1>10.0\g<2>", text)
+    assert n == m == 1
+    path = tmp_path / "leaning.urdf"
+    path.write_text(text)
+    return path, axis
+
+
+def _door_plan_about(axis, amount):
+    """Swing the fixture door by ``amount`` rad about the hinge axis ``axis`` (3,) through its hinge origin, the
+    gripper facing the door (yaw of the door's turned normal)."""
+    hinge = np.array([0.25, -0.28, 0.2])
+    th = np.linspace(0.0, amount, 61)
+    turn = Rotation.from_rotvec(th[:, None] * np.asarray(axis)[None, :])
+    handle = hinge + turn.apply([0.06, 0.48, 0.05])
+    normal = turn.apply([1.0, 0.0, 0.0])
+    q_open = np.column_stack([handle + TOOL_OFFSET * normal, np.arctan2(normal[:, 1], normal[:, 0])])
+    grasp, end = q_open[0], q_open[-1]
+    back = end + np.append(0.12 * normal[-1], 0.0)
+    return _plan("door", DOOR, amount, (
+        _seg("approach", line(grasp + [0.5, 0.0, 0.1, 0.0], grasp + [0.12, 0.0, 0.0, 0.0], 10), "open", 0.0),
+        _seg("grasp", line(grasp + [0.12, 0.0, 0.0, 0.0], grasp, 6), "closed", 0.0),
+        _seg("open", q_open, "closed", th),
+        _seg("release", q_open[-1:], "open", amount),
+        _seg("retreat", line(end, back, 6), "open", amount)))
+
+
+def test_a_door_swinging_shut_when_the_gripper_lets_go_fails(tmp_path):
+    scene, axis = _leaning_heavy_door(tmp_path, np.radians(6.0))
+    t = _certify(_door_plan_about(axis, 1.0), scene=scene, joint=DOOR)
+    assert t.status is Outcome.FAILED
+    turning = t.criterion("settled_angular_speed")
+    assert not turning.passed and turning.value > 2 * turning.threshold and "after the gripper let go" in turning.detail
+    assert t.criterion("grasp_held").passed and t.criterion("grasp_force").passed     # opened as planned, then fell
+    upright, _ = _leaning_heavy_door(tmp_path, 0.0)
+    assert _certify(_door_plan_about(np.array([0.0, 0.0, -1.0]), 1.0), scene=upright, joint=DOOR).status is \
+        Outcome.CERTIFIED                                                               # the same door, plumb, rests
+
+
+def _knock_plan(press):
+    """The drawer plan whose approach first brings the palm (the hand's box, turned 90 deg) sideways onto the
+    bar's end, ``press`` m past touching it, and back out, then grasps and opens as planned."""
+    plan = drawer_plan()
+    start, pre = plan.segments[0].q[0], plan.segments[0].q[-1]
+    beside = np.array([BAR_FRONT_X - 0.005, 0.07 + 0.03 + 0.05, 0.68, np.pi / 2])   # bar end y 0.07, palm 3 cm out
+    touch = beside - [0.0, 0.05 + press, 0.0, 0.0]
+    aside = beside + [0.1, 0.05, 0.0, 0.0]
+    approach = np.concatenate([line(start, beside, 8), line(beside, touch, 6), line(touch, beside, 4),
+                               line(beside, aside, 4), line(aside, pre, 8)])
+    return dataclasses.replace(plan, segments=(_seg("approach", approach, "open", 0.0),) + plan.segments[1:])
+
+
+def test_the_palm_knocking_the_handle_fails_interaction_force_alone():
+    # a gripper link on the handle is an expected contact, so only the force the robot applies judges the knock
+    t = _certify(_knock_plan(0.001))
+    assert t.status is Outcome.FAILED
+    failed = [c.name for c in t.criteria if not c.passed]
+    assert failed == ["interaction_force"]
+    force = t.criterion("interaction_force")
+    assert force.value > 2 * force.threshold and "pushed by hand" in force.detail and "approach" in force.detail
+    assert _certify(_knock_plan(-0.005)).status is Outcome.CERTIFIED                  # the palm stops 5 mm short
