@@ -119,6 +119,9 @@ class FittingConfig:
     front_edge_max_trim: float = 0.03
     """... an edge moves in from the 0.2 / 99.8 percentile extent by at most this (m); a deeper drop in
     density is occlusion (a mattress in front of a headboard's lower half), not the panel's edge."""
+    front_edge_tail_density: float = 0.1
+    """... and from the extent where that density first reaches this fraction of the face's: points
+    scattered farther out (flying pixels, label bleed from far) would spend the trim before the edge."""
     front_edge_min_points: int = 150
     """... a front face with fewer points keeps the percentile extents."""
     front_max_tilt: float = 0.2
@@ -169,6 +172,12 @@ class FittingConfig:
     """A cylinder or sphere wins only if its score is lower than the best box's by this fraction."""
     candidates: tuple[str, ...] = ("box", "cylinder_x", "cylinder_y", "cylinder_z", "sphere")
     """Candidate templates M^c: box, a cylinder along each box axis, sphere."""
+    base_tilt_tolerance: float = 0.009
+    """An object's base part (its body) fitted as a box tilted off the up direction its points' normals
+    show (:func:`recon.object_up.measured_up`) by more than this (rad, 0.5 deg; estimated normals
+    resolve 0.1-0.3 deg on the realistic scans) is refitted along that up direction without ICP: a body
+    that is not one box (a carcass on a narrower plinth) is tilted by the minimum-volume box and ICP,
+    and the parts refined onto it and the upright correction then move its fronts (pipeline.py)."""
     panel_ratio: float = 0.3
     """A part whose thinnest extent is below this fraction of the next one is a panel (a door or drawer
     front): its thin axis is the opening's normal (fitting, joints and refinement read it)."""
@@ -363,6 +372,10 @@ class SceneConfig:
 
     support_distance: float = 0.05
     """An object whose bottom is within this (m) of the floor / a top surface is supported by it."""
+    base_bottom_tolerance: float = 0.02
+    """An object standing above its support has its base part extended down onto it (what it stands on
+    is not seen: feet, a plinth, a hidden bottom edge) when the base's bottom is within this (m) of the
+    object's lowest point; otherwise the whole object moves down (scene_graph.resting_on)."""
     proximal_distance: float = 0.3
     """Objects whose footprints are closer than this (m) are proximal."""
     max_upright_tilt: float = 0.2

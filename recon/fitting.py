@@ -325,8 +325,11 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
             if a != k:
                 edges = _half_density_edges(q[face_mask, a], config)
                 if edges is not None:
-                    lo[a] = max(lo[a], min(edges[0], lo[a] + config.front_edge_max_trim))
-                    hi[a] = min(hi[a], max(edges[1], hi[a] - config.front_edge_max_trim))
+                    # scattered points past the face (flying pixels, bleed from far) are no extent to trim from
+                    dense = _half_density_edges(q[face_mask, a], config, config.front_edge_tail_density)
+                    start = (max(lo[a], dense[0]), min(hi[a], dense[1])) if dense else (lo[a], hi[a])
+                    lo[a] = max(lo[a], min(edges[0], start[0] + config.front_edge_max_trim))
+                    hi[a] = min(hi[a], max(edges[1], start[1] - config.front_edge_max_trim))
         _board_behind(lo, hi, k, float(np.median(q[face_mask, k])), side, config.front_thickness)
     else:
         slab = _slab_box(prim, q, k, bool(f % 2), config)
@@ -389,10 +392,12 @@ def _seen_side(normals: np.ndarray | None, mask: np.ndarray, axis_k: np.ndarray)
     return (m > 0) if abs(m) > 0.5 else None
 
 
-def _half_density_edges(x: np.ndarray, config: FittingConfig) -> tuple[float, float] | None:
+def _half_density_edges(x: np.ndarray, config: FittingConfig,
+                        fraction: float | None = None) -> tuple[float, float] | None:
     """(low, high) edges of the coordinates ``x`` (n,) of a face's points along one in-plane axis: where
-    the density of points, from each end inwards, first reaches ``front_edge_density`` × the density of
-    the central half (linear between bin centres). None with too few points or a degenerate spread."""
+    the density of points, from each end inwards, first reaches ``fraction`` (default
+    ``front_edge_density``) × the density of the central half (linear between bin centres). None with
+    too few points or a degenerate spread."""
     if len(x) < config.front_edge_min_points:
         return None
     q25, q75 = np.percentile(x, [25.0, 75.0])
@@ -407,7 +412,7 @@ def _half_density_edges(x: np.ndarray, config: FittingConfig) -> tuple[float, fl
     counts, edges = np.histogram(x, bins=nb, range=(lo - b, lo - b + nb * b))
     dens = counts / b
     centre = (edges[:-1] + edges[1:]) / 2
-    thresh = config.front_edge_density * level
+    thresh = (config.front_edge_density if fraction is None else fraction) * level
     full = np.flatnonzero(dens >= thresh)
     if len(full) == 0:
         return None
@@ -567,12 +572,13 @@ def _icp_refined(prim: Primitive, score: FitScore, points: np.ndarray, normals: 
 
 
 def fit_part(points: np.ndarray, config: FittingConfig, *, seed: int = 0,
-             normals: np.ndarray | None = None, R_world_ref: np.ndarray | None = None
+             normals: np.ndarray | None = None, R_world_ref: np.ndarray | None = None, align: bool = True
              ) -> tuple[str, Primitive, FitScore, dict[str, float]]:
     """Eq. 3 for one part: ``points`` (n, 3) world -> (winner name, primitive, its score, {name: total}).
 
     Deterministic for a given ``seed``. ``normals`` (n, 3) are estimated when not given.
     ``R_world_ref`` (3, 3): extra candidates aligned with these axes (see candidate_primitives).
+    ``align`` False: no ICP, the candidates keep their frames (with ``R_world_ref``: those axes).
     """
     from recon.open3d_engine import estimate_normals
 
@@ -596,9 +602,11 @@ def fit_part(points: np.ndarray, config: FittingConfig, *, seed: int = 0,
         if s0.total > cutoff:          # hopeless before alignment: ICP will not rescue it
             table[name] = s0.total
             continue
-        moved = _icp_refined(prim, s0, points, normals, config, np.random.default_rng(seed + 1))
-        s1 = score_primitive(moved, points, tree, config, np.random.default_rng(seed))
-        prim, s = (moved, s1) if s1.total < (1.0 - config.icp_min_improvement) * s0.total else (prim, s0)
+        s = s0
+        if align:
+            moved = _icp_refined(prim, s0, points, normals, config, np.random.default_rng(seed + 1))
+            s1 = score_primitive(moved, points, tree, config, np.random.default_rng(seed))
+            prim, s = (moved, s1) if s1.total < (1.0 - config.icp_min_improvement) * s0.total else (prim, s0)
         if prim.kind is PrimitiveKind.BOX:
             variant, front = _denoised(prim, points, config, normals)
             s2 = score_primitive(variant, points, tree, config, np.random.default_rng(seed))

@@ -8,7 +8,8 @@ Stages, in order (each a function below; per-object state travels in an :class:`
     remove_outliers    statistical outliers dropped part by part (outliers.py)
     split_labelled_fronts  a drawer/door part showing horizontal gaps split, one part per front (front_split.py)
     fit_primitives     Eq. 3: the best primitive per part, the base part first; a fit that does not cover
-                       its points is refitted with the other kinds (fitting.py, coverage.py)
+                       its points is refitted with the other kinds (fitting.py, coverage.py); a base box
+                       tilted off the up direction its object's faces show is refitted along it (object_up.py)
     complete_parts     hidden legs placed; legs, reaching and mounted parts extended (completion.py)
     contact_graph      surface planes Π, then the Eq. 1 contacts between parts (planes.py, contacts.py)
     build_part_tree    Eq. 4: the maximum spanning arborescence of the contacts (part_tree.py)
@@ -16,7 +17,8 @@ Stages, in order (each a function below; per-object state travels in an :class:`
     shape_handles      a handle's bar and posts (knob: cap and stem) off its mount (handle_shapes.py)
     check_coverage     each part's primitive against its points; a part outside the bounds is named
                        in a warning (coverage.py)
-    place_on_supports  upright correction, then every object resting on the floor or its supporter
+    place_on_supports  upright correction, then every object resting on the floor or its supporter (its
+                       base extended down to it when the base is its lowest part, else the object moved)
     estimate_object_joints  joint type, axis, origin and swept limits (joints.py), template shapes,
                        object frame -> ObjectReconstruction
     scene graph        support and proximal relations; walls from the background (walls.py)
@@ -32,7 +34,7 @@ from __future__ import annotations
 import logging
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -42,20 +44,21 @@ from recon.completion import (complete_missing_legs, complete_mounted_parts, com
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.coverage import coverage, coverage_problems
-from recon.fitting import FitScore, body_behind_face, fit_part_covering
+from recon.fitting import FitScore, body_behind_face, fit_part, fit_part_covering
 from recon.front_split import split_fronts
 from recon.handle_shapes import HandleShapes, mounted_handle_shapes, posed_handle_shapes
 from recon.joint_uncertainty import with_joint_uncertainty
 from recon.joints import estimate_joints
 from recon.leveling import Floor, find_floor
 from recon.model import ContactEdge, JointEstimate, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
+from recon.object_up import measured_up, tilt_to, turned_upright
 from recon.outliers import scan_without_outliers
 from recon.part_shapes import template_shapes
 from recon.part_tree import PartTree, choose_root, part_distances, part_tree
 from recon.planes import part_planes
-from recon.primitive import Primitive
+from recon.primitive import Primitive, PrimitiveKind
 from recon.refinement import refine_parts
-from recon.scan import ObjectPoints, Scan, read_scan
+from recon.scan import ObjectPoints, PartPoints, Scan, read_scan
 from recon.scene_graph import (object_frame, object_front, proximal_relations, resting_on,
                                support_relations, upright_correction)
 from recon.walls import walls_from_background
@@ -304,6 +307,10 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
             log.info("%s part %d (%s): the fitted %s did not cover its points; refitted as a %s%s", obj.id,
                      p.part_id, p.label, " then ".join(fit.refused), prim.kind.value,
                      f" (still: {'; '.join(fit.problems)})" if fit.problems else "")
+        if p.part_id == base:
+            upright = _base_along_measured_up(obj, p, prim, run)
+            if upright is not None:
+                name, prim, score, table = upright
         if p.part_id == base and p.label == "body":
             deep = body_behind_face(prim, p.normals, config)
             if deep is not None:
@@ -316,6 +323,28 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
         log.debug("object %d part %d (%s): %s, score %.4f", obj.id, p.part_id, p.label, name, score.total)
     state.prims = {i: completed.get(i, f.primitive) for i, f in state.fits.items()}
     return state
+
+
+def _base_along_measured_up(obj: ObjectPoints, part: PartPoints, prim: Primitive, run: _Run):
+    """The base part refitted as a box along the up direction the normals of its object's points show
+    (:func:`recon.object_up.measured_up`), without ICP, when its fitted box is tilted off that direction
+    by more than ``base_tilt_tolerance`` (and less than ``max_upright_tilt``, beyond which a tilt is
+    taken as intended): (name, primitive, score, table) as :func:`recon.fitting.fit_part` returns them,
+    or None to keep the fit."""
+    config = run.config.fitting
+    normals = [q.normals for q in obj.parts if q.normals is not None and len(q.normals) == len(q.points)]
+    if prim.kind is not PrimitiveKind.BOX or not normals:
+        return None
+    up = measured_up(np.concatenate(normals), config.normals_frame_cone, config.min_face_points)
+    if up is None:
+        return None
+    tilt = tilt_to(prim, up)
+    if tilt <= config.base_tilt_tolerance or tilt > run.config.scene.max_upright_tilt:
+        return None
+    log.info("object %d part %d (%s): fitted %.2f deg off the up direction of its faces; refitted along it",
+             obj.id, part.part_id, part.label, np.degrees(tilt))
+    return fit_part(part.points, replace(config, candidates=("box",)), seed=_part_seed(run.seed, part.part_id),
+                    normals=part.normals, R_world_ref=turned_upright(prim, up), align=False)
 
 
 def complete_parts(state: ObjectState, run: _Run) -> None:
@@ -417,7 +446,7 @@ def place_on_supports(states: list[ObjectState], run: _Run) -> dict[int, tuple[i
                      "left where it was scanned")
             continue
         top = 0.0 if sup is None else max(float(p.corners()[:, 2].max()) for p in by_id[sup].prims.values())
-        state.prims = resting_on(state.prims, top)
+        state.prims = resting_on(state.prims, top, state.tree.root, config.base_bottom_tolerance)
     return support
 
 

@@ -96,14 +96,22 @@ def object_frame(prims: list[Primitive], front: np.ndarray | None) -> tuple[np.n
     return T, hi - lo
 
 
-def resting_on(prims: dict[int, Primitive], top: float) -> dict[int, Primitive]:
+def resting_on(prims: dict[int, Primitive], top: float, base: int | None = None,
+               base_tolerance: float = 0.0) -> dict[int, Primitive]:
     """An object's parts ``prims`` (world frame) resting at height ``top`` (m): parts sunk below it
     (noise below the floor / a top surface) are cut there instead of lifting the whole object (which
-    would move its fitted drawers and doors), then the object moves vertically so its bottom is ``top``."""
+    would move its fitted drawers and doors). An object above ``top`` whose ``base`` part (its body)
+    reaches its lowest point (within ``base_tolerance`` m) and stands upright has that part extended
+    down to ``top`` (it stands on something the scan does not show: feet, a plinth, its hidden bottom
+    edge), for the same reason; otherwise the object moves vertically so its bottom is ``top``."""
     bottom = min(float(p.corners()[:, 2].min()) for p in prims.values())
     if bottom < top:
-        prims = {k: _clipped_below(p, top) for k, p in prims.items()}
+        prims = {k: _bottom_at(p, top) if p.corners()[:, 2].min() < top else p for k, p in prims.items()}
         bottom = min(float(p.corners()[:, 2].min()) for p in prims.values())
+    elif bottom > top and base in prims and float(prims[base].corners()[:, 2].min()) <= bottom + base_tolerance:
+        extended = _bottom_at(prims[base], top)
+        if extended is not prims[base]:
+            return {**prims, base: extended}
     if abs(top - bottom) > 1e-9:
         M = np.eye(4)
         M[2, 3] = top - bottom
@@ -111,14 +119,14 @@ def resting_on(prims: dict[int, Primitive], top: float) -> dict[int, Primitive]:
     return prims
 
 
-def _clipped_below(prim: Primitive, z: float) -> Primitive:
-    """``prim`` with the part below height ``z`` cut off, when it stands upright (an axis within ~3°
-    of vertical) and reaches below ``z``; otherwise unchanged."""
+def _bottom_at(prim: Primitive, z: float) -> Primitive:
+    """``prim`` with its bottom at height ``z`` (the part below cut off, or extended down to it), when it
+    stands upright (an axis within ~3° of vertical) and its top is above ``z``; otherwise unchanged."""
     R = prim.T_world_part[:3, :3]
     k = int(np.argmax(np.abs(R[2, :])))
     c = prim.corners()
     lo, hi = float(c[:, 2].min()), float(c[:, 2].max())
-    if lo >= z or hi <= z or abs(R[2, k]) < 0.998 or prim.kind.value == "sphere":
+    if lo == z or hi <= z or abs(R[2, k]) < 0.998 or prim.kind.value == "sphere":
         return prim
     if prim.kind.value == "cylinder" and k != 2:
         return prim
