@@ -199,8 +199,13 @@ def find_floor(scan: Scan, config: LevelingConfig, scene: SceneConfig, seed: int
     if best is None:
         return Floor.assumed()
     _, n, d, inl = best
-    # least squares through the inliers (RANSAC's plane is from 3 points)
-    c = inl.mean(axis=0)
-    m = np.linalg.svd(inl - c, full_matrices=False)[2][2]
-    n = m if m @ n > 0 else -m
-    return Floor(n, float(n @ c), len(inl))
+    # RANSAC's plane is from 3 points and its inlier band is centred on it: refit by least squares, then
+    # take the band again around the refit (twice), the offset as the band's median distance
+    c = -d
+    for _ in range(3):
+        centre = inl.mean(axis=0)
+        m = np.linalg.svd(inl - centre, full_matrices=False)[2][2]
+        n = m if m @ n > 0 else -m
+        c = float(np.median(inl @ n))
+        inl = bg[np.abs(bg @ n - c) < config.floor_ransac_distance]
+    return Floor(n, c, len(inl))
