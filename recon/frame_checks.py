@@ -3,10 +3,12 @@
 * Orientation (:func:`frame_problem`): the floor found by :func:`recon.leveling.find_floor` must lie
   under the labelled objects, its normal within ``max_floor_tilt_deg`` of +z. Above them the scan is
   upside down; beside them (or more tilted) it is not z-up. ``level_floor`` rotates such a scan level.
-* Scale (:func:`scale_problems`): in the floor frame (z up), no object may be taller or longer than
-  the largest real object of its category (:data:`MAX_SIZE`, generous bounds from furniture ranges:
-  a kitchen run of cabinets, a conference table, a bunk bed): coordinates in centimetres, or a scan
-  scaled by 10, make every object that large.
+* Scale (:func:`scale_problems`): in the floor frame (z up), no object may be more than
+  :data:`UNIT_ERROR_MARGIN` times taller or longer than the largest real object of its category
+  (:data:`MAX_SIZE`, generous bounds from furniture ranges: a kitchen run of cabinets, a conference
+  table, a bunk bed). A wrong unit scales everything by 10 or more (centimetres 100, inches 39.4);
+  the margin keeps what a real segmentation lumps with an object (a microwave's stand, a cabinet's
+  plinth) from looking like one.
 
 The messages name the scan, the evidence and the fix; the pipeline raises them as
 :class:`recon.errors.ScanError` (``recon build`` exits 2).
@@ -20,7 +22,7 @@ from recon.config import LevelingConfig
 from recon.leveling import Floor
 from recon.scan import Scan
 
-__all__ = ["MAX_SIZE", "frame_problem", "scale_problems"]
+__all__ = ["MAX_SIZE", "UNIT_ERROR_MARGIN", "frame_problem", "scale_problems"]
 
 MAX_SIZE = {
     "cabinet": (6.0, 2.8), "wardrobe": (4.5, 2.8), "shelf": (6.0, 3.0), "refrigerator": (2.0, 2.4),
@@ -30,6 +32,8 @@ MAX_SIZE = {
 """{category: (longest side on the floor, height)}, metres: larger than any real object of the category."""
 DEFAULT_MAX_SIZE = (8.0, 3.5)
 """... of a category not in :data:`MAX_SIZE` (a room is rarely taller)."""
+UNIT_ERROR_MARGIN = 2.0
+"""An object is implausibly scaled beyond this multiple of :data:`MAX_SIZE` (a unit error is at least 10)."""
 _PERCENTILES = (2.0, 98.0)
 """An object's extent is measured between these percentiles of its points (label noise, flying pixels)."""
 
@@ -80,7 +84,7 @@ def scale_problems(scan: Scan, source: str) -> str | None:
         if not o.parts:
             continue
         side, height = _extents(np.concatenate([p.points for p in o.parts]))
-        max_side, max_height = MAX_SIZE.get(o.category, DEFAULT_MAX_SIZE)
+        max_side, max_height = (UNIT_ERROR_MARGIN * m for m in MAX_SIZE.get(o.category, DEFAULT_MAX_SIZE))
         if side > max_side or height > max_height:
             big.append(f"object {o.id} ({o.category}) is {height:.2f} m tall and {side:.2f} m long (no {o.category} "
                        f"is taller than {max_height:g} m or longer than {max_side:g} m)")
