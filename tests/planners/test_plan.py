@@ -209,3 +209,21 @@ def test_short_knob_close_to_the_face_as_recon_builds_it(robot, variants, pb_con
     # The grasp is on the knob (centre 0.271 m out in the drawer frame, or backed off further out).
     assert 0.27 < plan.T_link_grasp[0, 3] < 0.30
     assert pb_contacts(robot, urdf, plan, {"cabinet1_handle13"}) == []
+def test_a_seed_gives_one_path_whatever_the_machine_speed():
+    """A slow validity checker (a loaded machine) must not change the simplified path (simplified until no pass improves it, not for a tight wall-time budget)."""
+    import time
+
+    from planners.ompl_adapter import plan_joint_path
+
+    def free(q):  # a 6-D unit box split at x0 = 0.5 by a wall with one window
+        return not (0.45 < q[0] < 0.55 and not (0.4 < q[1] < 0.6 and 0.4 < q[2] < 0.6))
+
+    def slow(q):
+        time.sleep(2e-4)
+        return free(q)
+
+    start, goal = np.array([0.05, 0.9, 0.1, 0.2, 0.9, 0.1]), np.array([0.95, 0.9, 0.1, 0.8, 0.1, 0.9])
+    paths = [plan_joint_path(start, goal, np.zeros(6), np.ones(6), check, time_limit=60, seed=3,
+                             resolution=0.002).path for check in (free, slow)]
+    assert len(paths[0]) > 2
+    np.testing.assert_array_equal(paths[0], paths[1])
