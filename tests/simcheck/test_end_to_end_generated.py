@@ -40,7 +40,6 @@ def test_drawer_and_door_of_a_generated_scene_are_certified_on_their_truth(kitch
     for t in cert.tasks:
         assert t.criterion("opened_fraction").value > 0.95
         assert t.criterion("plan_collision_free").value <= 0.005
-        assert t.timings["total"] < 15.0
     r = Rollout.load(kitchen / "cert" / cert[K_DRAWER].rollout)
     assert r.handle_link.startswith("cabinet1_handle") and r.grasp_active[r.in_segment("open")].all()
 
