@@ -30,7 +30,7 @@ from simcheck.certificate import Certificate, TaskCertificate, software_versions
 from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS, CriteriaConfig, PhysicsConfig
 from simcheck.criteria import CriterionResult, plan_collision_free, plan_found, rollout_criteria
 from simcheck.errors import RobotBindingError, SimcheckInputError
-from simcheck.estimate_diff import joint_differences, joint_mapping
+from simcheck.estimate_diff import joint_differences, joint_mapping, measured_differences
 from simcheck.execute import execute_task, handle_link_for
 from simcheck.keyframes import KeyFrameCamera
 from simcheck.plan_recheck import recheck_plan
@@ -257,6 +257,9 @@ class Session:
             hints = []
             if self.against is not None:
                 hints = joint_differences(est, ref)
+                if self.last_rollout is not None and any(c.name in FORCE_CRITERIA for c in failed):
+                    measured = measured_differences(est, ref, _grasped_point(self.last_rollout), plan.amount)
+                    hints += [measured] if measured else []
                 hints += [f"reference link {b} (absent from the estimate) blocked {task.joint}"
                           for b in blockers if b not in self.scene_links]
             hints += [f"scene link {b} blocked {task.joint}" for b in blockers if b in self.scene_links]
@@ -265,6 +268,18 @@ class Session:
             reason = f"{plan.reason}: {reason}"
         return TaskCertificate(task.action, task.joint, status, reason, float(plan.amount), unit, tuple(crit), seed,
                                timings, rollout or "", tuple(images), plan_status="OK")
+
+
+#: criteria that fail when the robot had to push or pull harder than it may: with ``--against``, their failure
+#: names the estimate's measured differences from the reference even within estimate_diff's tolerances
+FORCE_CRITERIA = ("grasp_force", "interaction_force", "robot_joint_effort")
+
+
+def _grasped_point(r: Rollout) -> np.ndarray:
+    """(3,) world, m: the grasped point of the handle when the opening started (the handle link's origin at the
+    first sample when no grasp was made)."""
+    held = np.flatnonzero(r.in_segment(r.opening_segment) & np.all(np.isfinite(r.grasp_point), axis=1))
+    return r.grasp_point[held[0]] if len(held) else r.T_world_handle[0, :3, 3]
 
 
 def _robot_label(save_plan: bool | str) -> str:

@@ -14,14 +14,16 @@ import pytest
 
 from planners.robot import GripperModel
 from scenes.outcome import Outcome
+import simcheck.estimate_faults as wrong
 from simcheck.certification import certify
 from simcheck.execute import execute_task
+from simcheck.scene_joints import read_scene_joints
 from simcheck.world import World
 
 from scipy.spatial.transform import Rotation
 
-from simcheck_fixture_plans import (CABINET, DOOR, DRAWER, ROBOT, TOOL_OFFSET, _plan, _seg, drawer_plan, fixture_planner,
-                                    line)
+from simcheck_fixture_plans import (CABINET, DOOR, DRAWER, ROBOT, TOOL_OFFSET, _plan, _seg, door_plan, drawer_plan,
+                                    fixture_planner, line)
 
 BAR_FRONT_X = 0.30          # the fixture drawer's handle bar spans x 0.28-0.30 (closed drawer)
 FINGERTIP_REACH = 0.02      # the gantry's fingertips reach 2 cm past its tool frame along -x
@@ -139,13 +141,18 @@ def test_a_drawer_pulled_past_the_request_fails():
     assert t.criterion("grasp_held").passed and t.criterion("grasp_force").passed
 
 
-def test_a_joint_held_at_its_effort_limit_fails(tmp_path):
-    # a 6 deg axis error pulls the hand sideways; a y joint of 15 N is pushed off its target instead of holding
+def _weak_y(tmp_path, effort):
+    """The gantry robot with a y joint of ``effort`` N (2000 N in the fixture)."""
     urdf = tmp_path / "weak_y.urdf"
-    text, n = re.subn(r'(<joint name="y_joint".*?effort=")2000(")', r"\g<1>15\g<2>", ROBOT.urdf.read_text())
+    text, n = re.subn(r'(<joint name="y_joint".*?effort=")2000(")', rf"\g<1>{effort:g}\g<2>", ROBOT.urdf.read_text())
     assert n == 1
     urdf.write_text(text)
-    weak = dataclasses.replace(ROBOT, urdf=urdf)
+    return dataclasses.replace(ROBOT, urdf=urdf)
+
+
+def test_a_joint_held_at_its_effort_limit_fails(tmp_path):
+    # a 6 deg axis error pulls the hand sideways; a y joint of 15 N is pushed off its target instead of holding
+    weak = _weak_y(tmp_path, 15)
     t = _certify(drawer_plan(axis_deg=6.0), robot=weak)
     assert t.status is Outcome.FAILED
     effort = t.criterion("robot_joint_effort")
@@ -221,3 +228,21 @@ def test_the_palm_knocking_the_handle_fails_interaction_force_alone():
     force = t.criterion("interaction_force")
     assert force.value > 2 * force.threshold and "pushed by hand" in force.detail and "approach" in force.detail
     assert _certify(_knock_plan(-0.005)).status is Outcome.CERTIFIED                  # the palm stops 5 mm short
+
+
+def test_a_force_failure_against_the_reference_names_a_hinge_error_within_the_tolerances(tmp_path):
+    # the estimate's hinge 9 mm out of the front (estimate_diff's tolerance: 1 cm): a y joint of 20 N cannot hold
+    # the hand on the wrong arc; the reason names the offset and how far it takes the handle off its real path
+    weak = _weak_y(tmp_path, 20)
+    est = wrong.shift_hinge(CABINET, DOOR, tmp_path / "estimate.urdf", normal=-0.009)
+    e, r = read_scene_joints(est)[DOOR].origin_world, read_scene_joints(CABINET)[DOOR].origin_world
+    plan = door_plan(hinge=tuple(e[:2]), radius_xy=(0.06 + r[0] - e[0], 0.48 + r[1] - e[1]))   # the same handle
+    t = certify(est, [f"open-door:{DOOR}"], against=CABINET, robot=weak, images=False,
+                planner=fixture_planner({DOOR: plan}))[DOOR]
+    assert t.status is Outcome.FAILED and not t.criterion("robot_joint_effort").passed
+    assert "is 0.009 m from the reference hinge" not in t.reason                    # not beyond the tolerance
+    assert "hinge 9 mm off" in t.reason and "-9 mm along its front normal" in t.reason
+    assert "up to 10 mm off the reference's path" in t.reason                       # 2 sin(1.2 / 2) x 9 mm
+    truth = certify(CABINET, [f"open-door:{DOOR}"], against=CABINET, robot=weak, images=False,
+                    planner=fixture_planner({DOOR: door_plan()}))[DOOR]
+    assert truth.status is Outcome.CERTIFIED                                        # the same arm opens the truth
