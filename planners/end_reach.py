@@ -45,7 +45,7 @@ def end_reach(kin, world, T_end: np.ndarray, s_end: float, cfg: PlannerConfig, r
     arm = np.zeros(spec.dof, bool)
     arm[3:] = True
     weights = ik_weights(kin, cfg)
-    p = T_end[:3, 3]
+    p = kin.in_root(T_end[:3, 3])               # base poses are sampled in the floor frame
     miss, pairs = math.inf, {}
     for _ in range(END_SAMPLES):
         a = rng.uniform(-math.pi, math.pi)

@@ -6,13 +6,19 @@ The robot's collision meshes are replaced by their convex hulls (coal ``buildCon
 The scene URDF is loaded as a pinocchio model too and appended to the robot model, so the scene's
 articulation state is part of the configuration: the task joint takes the value ``s`` of the check, every
 other scene joint the value of ``scene_state``. A check covers robot self-collision (non-adjacent,
-non-ignored link pairs), robot vs floor (a half-space at z = 0) and robot vs every scene geometry, through
-pinocchio's broad-phase manager (coal dynamic AABB tree), all in C++ (~30k checks/s). Every call
+non-ignored link pairs), robot vs floor (a half-space on the scene's floor) and robot vs every scene geometry,
+through pinocchio's broad-phase manager (coal dynamic AABB tree), all in C++ (~30k checks/s). Every call
 increments :attr:`PlanningWorld.checks`.
+
+Frames: the world is the scene URDF's frame. The robot's root link stands at the floor frame's origin
+(:meth:`RobotKinematics.standing_on`, :attr:`scenes.description.SceneFloor.T_scene_floor`; the world origin
+for a floor at z = 0), so every pose (tool, frames, shoulder) is in the scene's frame and the base joints'
+(x, y, yaw) are floor-frame coordinates.
 """
 
 from __future__ import annotations
 
+import copy
 import logging
 from collections import defaultdict
 
@@ -23,7 +29,7 @@ import pinocchio as pin
 from planners.errors import RobotDescriptionError, SceneURDFError
 from planners.robot import RobotSpec
 from planners.scene_urdf import read_scene_urdf
-from scenes.description import SceneModel
+from scenes.description import LEVEL_FLOOR, SceneFloor, SceneModel
 
 __all__ = ["LIMIT_TOLERANCE", "PlanningWorld", "RobotKinematics"]
 
@@ -47,6 +53,10 @@ class RobotKinematics:
     """Robot model (pinocchio), convex collision geometry and the map from planned joints to ``q``.
 
     ``q`` arguments are ``(dof,)`` arrays in ``spec.joint_names`` order; the fingers are set separately.
+
+    Attributes:
+        floor: the :class:`scenes.description.SceneFloor` the robot stands on (:data:`LEVEL_FLOOR` as built).
+        T_world_root: (4, 4) where the URDF's root link stands in the world: the floor frame.
     """
 
     def __init__(self, spec: RobotSpec):
@@ -81,6 +91,41 @@ class RobotKinematics:
         self.lift_cols = np.array([c for c in arm_cols if c < first], dtype=int)
         self.shoulder_joint = self.model.getJointId(spec.joint_names[first])
         self.reach = self._reach()
+        self.floor = LEVEL_FLOOR
+        self.T_world_root = np.eye(4)
+
+    def standing_on(self, floor: SceneFloor) -> "RobotKinematics":
+        """This robot with its root link at the origin of ``floor``'s frame (itself for a level floor): the
+        joints attached to the root are placed by ``floor.T_scene_floor`` in a copy of the model; the convex
+        geometry is shared."""
+        if floor == self.floor:
+            return self
+        out = copy.copy(self)
+        T = floor.T_scene_floor
+        M = pin.SE3(T[:3, :3], T[:3, 3]) * pin.SE3(self.T_world_root).inverse()
+        out.model = self.model.copy()
+        for j in range(1, out.model.njoints):
+            if out.model.parents[j] == 0:
+                out.model.jointPlacements[j] = M * out.model.jointPlacements[j]
+        for i in range(1, len(out.model.frames)):
+            f = out.model.frames[i]
+            if f.parentJoint == 0:
+                f.placement = M * f.placement
+                out.model.frames[i] = f
+        out.data = out.model.createData()
+        out.geom_data = pin.GeometryData(out.geom_model)
+        out.q_full = self.q_full.copy()
+        out.floor, out.T_world_root = floor, T.copy()
+        return out
+
+    def in_root(self, T_world: np.ndarray) -> np.ndarray:
+        """``T_world`` (4, 4) (or a point (3,)) in the robot's root frame, where the base joints' (x, y, yaw)
+        are measured (the floor frame)."""
+        T_world = np.asarray(T_world, dtype=float)
+        if self.floor.level:
+            return T_world.copy()
+        T_root_world = np.linalg.inv(self.T_world_root)
+        return T_root_world @ T_world if T_world.shape == (4, 4) else T_root_world[:3, :3] @ T_world + T_root_world[:3, 3]
 
     def _reach(self, n: int = 400) -> float:
         """Largest tool distance (m) from the shoulder's origin over ``n`` seeded random arm configurations,
@@ -221,7 +266,9 @@ class PlanningWorld:
         nr = robot.geom_model.ngeoms
         self.model, self.geom = pin.appendModel(robot.model, smodel, robot.geom_model.copy(), sgeom, 0,
                                                 pin.SE3.Identity())
-        floor = pin.GeometryObject("floor", 0, 0, pin.SE3.Identity(), coal.Halfspace(np.array([0.0, 0.0, 1.0]), 0.0))
+        up = robot.floor
+        floor = pin.GeometryObject("floor", 0, 0, pin.SE3.Identity(),
+                                   coal.Halfspace(np.array(up.normal, dtype=float), float(up.height_m)))
         fi = self.geom.addGeometryObject(floor)
         for a in range(nr):
             self.geom.addCollisionPair(pin.CollisionPair(a, fi))

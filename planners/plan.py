@@ -27,20 +27,30 @@ from planners.opening import plan_opening_constrained
 from planners.ompl_adapter import plan_joint_path
 from planners.pin_world import LIMIT_TOLERANCE, PlanningWorld, RobotKinematics
 from planners.robot import RobotSpec
-from planners.scene_urdf import read_scene_urdf
+from planners.scene_urdf import read_floor, read_scene_urdf
 from planners.stand import StandPose, find_stand_poses
 from planners.task import OpenTask, PlanResult, PlanStatus, Segment, check_amount, check_task
-from scenes.description import SceneModel
+from scenes.description import LEVEL_FLOOR, SceneFloor, SceneModel
 
 __all__ = ["plan_open_task", "robot_kinematics", "closed_value", "close_start_value"]
 
 log = logging.getLogger(__name__)
 
 
+def robot_kinematics(spec: RobotSpec, floor: SceneFloor = LEVEL_FLOOR) -> RobotKinematics:
+    """The (cached) pinocchio model of ``spec`` standing on ``floor`` (loading and convexifying its meshes is
+    done once per spec; :meth:`RobotKinematics.standing_on` once per floor)."""
+    return _standing(_kinematics(spec), floor)
+
+
 @functools.lru_cache(maxsize=4)
-def robot_kinematics(spec: RobotSpec) -> RobotKinematics:
-    """The (cached) pinocchio model of ``spec`` (loading and convexifying its meshes is done once per spec)."""
+def _kinematics(spec: RobotSpec) -> RobotKinematics:
     return RobotKinematics(spec)
+
+
+@functools.lru_cache(maxsize=8)
+def _standing(kin: RobotKinematics, floor: SceneFloor) -> RobotKinematics:
+    return kin.standing_on(floor)
 
 
 def closed_value(lower: float, upper: float) -> float:
@@ -135,7 +145,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     state = dict(scene_state or {})
     s0 = float(state.get(task.joint, 0.0))
     amount = _validate(scene, task, s0, cfg)
-    kin = robot_kinematics(robot)
+    kin = robot_kinematics(robot, read_floor(scene_urdf))    # the robot on the scene's floor
     opens_up = (amount > 0) != task.close          # which way the joint opens: the handle's outward side
     try:
         handle = find_handle(scene, task, state, cfg, 1.0 if opens_up else -1.0, amount, 2 * robot.finger_open)
@@ -163,8 +173,9 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     hinge_xy = None
     if j.type != "prismatic":
         T_world_joint = scene.T_world_link(j.parent, state) @ j.T_parent_joint
-        if abs((T_world_joint[:3, :3] @ j.axis)[2]) > 0.9:   # a vertical hinge: a side-swinging door
-            hinge_xy = T_world_joint[:2, 3]
+        T_root_joint = kin.in_root(T_world_joint)           # floor frame: "vertical" is along the floor's normal
+        if abs((T_root_joint[:3, :3] @ j.axis)[2]) > 0.9:   # a vertical hinge: a side-swinging door
+            hinge_xy = T_root_joint[:2, 3]
     stands, summary, miss = find_stand_poses(kin, world, T_paths, s_path, cfg, rng, hinge_xy, handle.facing)
     timings["stand"] = time.perf_counter() - t
     if not stands:
@@ -198,7 +209,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
         T_link_grasp = handle.T_link_grasps[stand.grasp_index]
         return result(PlanStatus.OK, f"{task.kind} {task.joint!r}: planned {'closing' if task.close else 'opening'} by {amount:.3f} "
                       f"({'m' if j.type == 'prismatic' else 'rad'}) from stand {np.round(stand.base, 3).tolist()}{note}",
-                      segments=tuple(segments), T_world_base_stand=stand.T_world_base, T_link_grasp=T_link_grasp,
+                      segments=tuple(segments), T_world_base_stand=kin.T_world_root @ stand.T_root_base, T_link_grasp=T_link_grasp,
                       method=method)
     status, reason = failures[0] if len(failures) == 1 else failures[-1]
     if all(f[0] is PlanStatus.OPENING_FAILED for f in failures):
@@ -216,9 +227,9 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
             return result(PlanStatus.NO_STAND_POSE, f"{task.kind} {task.joint!r}: the end of the opening is out of the "
                           f"robot's reach: none of {END_SAMPLES} base poses sampled around it holds the handle there "
                           f"({pose}; {why}); {reason} ({summary}; tried {len(failures)} stand poses)",
-                          nearest_miss=e.miss, T_world_base_stand=stands[0].T_world_base)
+                          nearest_miss=e.miss, T_world_base_stand=kin.T_world_root @ stands[0].T_root_base)
     return result(status, f"{task.kind} {task.joint!r}: {reason} ({summary}; tried {len(failures)} stand poses)",
-                  T_world_base_stand=stands[0].T_world_base)
+                  T_world_base_stand=kin.T_world_root @ stands[0].T_root_base)
 
 
 def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle, cfg, rng, arm, whole, weights,

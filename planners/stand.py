@@ -40,7 +40,8 @@ class StandPose:
     """A ranked stand pose.
 
     Attributes:
-        base: (3,) float, base (x m, y m, yaw rad).
+        base: (3,) float, base (x m, y m, yaw rad), in the robot's root frame (the floor frame: the base joints'
+            values).
         q_grasp: (dof,) float, configuration at the grasp (task joint at its start value).
         grasp_index: which grasp candidate (index into ``HandleGrasp.T_link_grasps``).
         path_share: share of the path samples reached with the base fixed (1.0 = complete).
@@ -56,7 +57,8 @@ class StandPose:
     clearance: float = 0.0
 
     @property
-    def T_world_base(self) -> np.ndarray:
+    def T_root_base(self) -> np.ndarray:
+        """(4, 4) the base in the robot's root frame (the floor frame; the world's when the floor is z = 0)."""
         c, s = math.cos(self.base[2]), math.sin(self.base[2])
         T = np.eye(4)
         T[:2, :2] = [[c, -s], [s, c]]
@@ -90,18 +92,20 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
     """Sample and rank stand poses for grasp paths ``T_paths`` (one ``(m, 4, 4)`` array per grasp candidate)
     at task joint values ``s_samples (m,)``.
 
-    ``hinge_xy (2,)``: for a door, a point of its (vertical) hinge line; the lateral offsets are then
-    biased away from the hinge (``cfg.door_lateral``), so the base stands clear of the swinging panel.
-    ``facing (3,)``: the world direction to stand along from the grasp (default: opposite the approach; a pinch
-    on a front's edge approaches in the front's plane, so it gives the front's outward normal).
+    ``hinge_xy (2,)``: for a door, a point of its (vertical) hinge line, floor frame (``kin.in_root``); the
+    lateral offsets are then biased away from the hinge (``cfg.door_lateral``), so the base stands clear of the
+    swinging panel. ``facing (3,)``: the world direction to stand along from the grasp (default: opposite the
+    approach; a pinch on a front's edge approaches in the front's plane, so it gives the front's outward normal).
+    Base poses are sampled in the robot's root frame (the floor frame, :meth:`RobotKinematics.in_root`).
 
     Returns a :class:`StandSearch`.
     """
     spec = kin.spec
     lower, upper = world.robot.lower, world.robot.upper
-    p0 = T_paths[0][0][:3, 3]
-    approach = T_paths[0][0][:3, 2]
-    n = -approach[:2] if facing is None else np.asarray(facing, float)[:2]
+    T0 = kin.in_root(T_paths[0][0])            # the grasp in the floor frame, where the base poses are sampled
+    p0 = T0[:3, 3]
+    approach = T0[:3, 2]
+    n = -approach[:2] if facing is None else (kin.in_root(np.eye(4))[:3, :3] @ np.asarray(facing, float))[:2]
     if np.linalg.norm(n) < 1e-6:
         n = np.array([1.0, 0.0])
     n = n / np.linalg.norm(n)
@@ -130,7 +134,7 @@ def find_stand_poses(kin, world, T_paths: list, s_samples: np.ndarray, cfg: Plan
         q_seed = spec.q_with_base(spec.home_q, xy[0], xy[1], yaw)
         if world.in_collision(q_seed, s_samples[0], True):   # base (arm at home) collides: cheap rejection
             continue
-        dist = kin.shoulder_distance(q_seed, p0)
+        dist = kin.shoulder_distance(q_seed, T_paths[0][0][:3, 3])
         if dist > kin.reach:   # grasp out of the arm's reach
             far.append((dist, q_seed))
             continue

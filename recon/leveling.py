@@ -26,10 +26,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from recon.config import LevelingConfig, SceneConfig
 from recon.scan import Scan
+from scenes.description import R_onto_up
 
 __all__ = ["Floor", "find_floor", "upright_share"]
 
@@ -97,7 +97,7 @@ class Floor:
         """(4, 4) rigid transform from this frame into the floor frame (floor z = 0, normal +z): the
         shortest rotation by the tilt about the origin, then down by ``height_m``."""
         T = np.eye(4)
-        T[:3, :3] = _rotation_onto_up(self.normal)
+        T[:3, :3] = R_onto_up(self.normal)
         T[2, 3] = -self.height_m
         return T
 
@@ -114,14 +114,6 @@ class Floor:
     @classmethod
     def from_dict(cls, d: dict) -> "Floor":
         return cls(np.asarray(d["normal"], dtype=np.float64), float(d["height_m"]), int(d.get("n_points", 0)))
-
-
-def _rotation_onto_up(n: np.ndarray) -> np.ndarray:
-    """(3, 3) the shortest rotation taking unit ``n`` onto +z (a half turn about x when n = -z)."""
-    if n[2] < -1.0 + 1e-12:
-        return np.diag([1.0, -1.0, -1.0])
-    rot, _ = Rotation.align_vectors([_UP], [n])
-    return rot.as_matrix()
 
 
 def _part_votes(scan: Scan) -> list[tuple[str, np.ndarray]]:

@@ -253,8 +253,9 @@ def output_frame(objects: list[ObjectReconstruction], walls: tuple, floor: Floor
     T = np.linalg.inv(T_floor_scan)
     if floor.found and (abs(floor.height_m) > cfg.floor_offset_warning or floor.tilt_deg > 0.0):
         run.warn(f"the scan's floor is {floor.height_m:+.3f} m off its origin and tilted {floor.tilt_deg:.1f} deg: "
-                 "the output stays in the scan's frame, objects on that floor; planners and simcheck put the "
-                 "robot and the ground plane on z = 0: pass --level-floor to write the scene levelled on its floor")
+                 "the output stays in the scan's frame, objects on that floor (graph.json \"floor\": planners and "
+                 "simcheck stand the robot on it; other simulators put the ground at z = 0): pass --level-floor to "
+                 "write the scene levelled on its floor")
     return [o.transformed(T) for o in objects], tuple(w.transformed(T) for w in walls), floor
 
 

@@ -40,11 +40,13 @@ log = logging.getLogger(__name__)
 #: how far, rad or m per joint, a scenario's given plan may start from where the robot is
 START_TOLERANCE = 1e-3
 
-def _tool_poses(robot, q: np.ndarray) -> np.ndarray:
-    """(n, 4, 4) tool poses T_world_tool of ``robot`` (a planners.RobotSpec) at (n, dof) ``q``."""
+def _tool_poses(robot, q: np.ndarray, scene) -> np.ndarray:
+    """(n, 4, 4) tool poses T_world_tool of ``robot`` (a planners.RobotSpec) at (n, dof) ``q``, standing on the
+    floor of the scene URDF ``scene`` (scene frame)."""
     from planners.plan import robot_kinematics
+    from planners.scene_urdf import read_floor
 
-    kin = robot_kinematics(robot)
+    kin = robot_kinematics(robot, read_floor(scene))
     return np.array([kin.tool_pose(x) for x in q])
 
 
@@ -122,7 +124,7 @@ def bind_plan(given: GivenPlan, robot, scene_joints: dict, scene) -> list[PlanRe
     segments = []
     for s in given.segments:
         q = s.q[:, order]
-        T = _tool_poses(robot, q)
+        T = _tool_poses(robot, q, scene)
         given_tool = np.isfinite(s.T_world_tool[:, :3, 3]).all(axis=1)
         T[given_tool, :3, 3] = s.T_world_tool[given_tool, :3, 3]
         segments.append(dataclasses.replace(s, q=q, T_world_tool=T))

@@ -2,6 +2,9 @@
 self-collision on or Drake, let gravity act for a while from q = 0, and report how far every movable joint
 moved; and measure how deep its links interpenetrate at q = 0 (coal signed distance).
 
+Gravity pulls against the scene's floor (:func:`scenes.description.read_scene_floor`: recon's graph.json beside
+the file, else along -z), as in simcheck's world.
+
 Each engine is imported only inside its function (MuJoCo and Drake are optional: ``pip install mujoco drake``).
 Displacements are metres for a prismatic ("slide") joint and radians for a revolute ("hinge") one.
 """
@@ -12,6 +15,8 @@ import itertools
 from pathlib import Path
 
 import numpy as np
+
+from scenes.description import read_scene_floor
 
 __all__ = ["ENGINES", "rest_motion", "mujoco_rest", "pybullet_rest", "drake_rest", "link_overlaps", "moved_joints"]
 
@@ -24,6 +29,9 @@ def mujoco_rest(path: str | Path, seconds: float = 2.0) -> dict[str, tuple[str, 
     import mujoco
 
     m = mujoco.MjModel.from_xml_path(str(path))
+    floor = read_scene_floor(path)
+    if not floor.level:
+        m.opt.gravity[:] = floor.gravity(9.81)
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
     q0 = d.qpos.copy()
@@ -47,7 +55,7 @@ def pybullet_rest(path: str | Path, seconds: float = 2.0, dt: float = 1 / 240) -
 
     c = pb.connect(pb.DIRECT)
     try:
-        pb.setGravity(0, 0, -9.81, physicsClientId=c)
+        pb.setGravity(*read_scene_floor(path).gravity(9.81).tolist(), physicsClientId=c)
         pb.setTimeStep(dt, physicsClientId=c)
         body = pb.loadURDF(str(path), useFixedBase=True, physicsClientId=c,
                            flags=pb.URDF_USE_SELF_COLLISION | pb.URDF_USE_INERTIA_FROM_FILE)
@@ -78,6 +86,9 @@ def drake_rest(path: str | Path, seconds: float = 2.0, dt: float = 0.001) -> dic
     builder = DiagramBuilder()
     plant, _ = AddMultibodyPlantSceneGraph(builder, time_step=dt)
     Parser(plant).AddModels(str(path))
+    floor = read_scene_floor(path)
+    if not floor.level:
+        plant.mutable_gravity_field().set_gravity_vector(floor.gravity(9.81))
     plant.Finalize()
     sim = Simulator(builder.Build())
     ctx = plant.GetMyContextFromRoot(sim.get_mutable_context())

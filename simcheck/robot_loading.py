@@ -1,5 +1,5 @@
-"""The robot URDF loaded into a PyBullet client with a fixed base at the world origin (a mobile base is
-modelled by its base joints), bound by name to a :class:`simcheck.robot_binding.SimRobot`: the
+"""The robot URDF loaded into a PyBullet client with a fixed base on the floor (at the floor frame's origin;
+the world origin when the floor is z = 0: a mobile base is modelled by its base joints), bound by name to a :class:`simcheck.robot_binding.SimRobot`: the
 controlled joints, the fingers and their closing directions, the gripper and base links. The base links
 never collide with the floor (a mobile base stands on it)."""
 
@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from simcheck.bullet import body_joint_table, c_output_logged, link_pose, pb, pybullet_said
+from simcheck.bullet_poses import quat_xyzw_from_R
 from simcheck.errors import RobotBindingError
 from simcheck.joint_table import JointInfo
 from simcheck.robot_binding import SimRobot
@@ -44,9 +45,12 @@ class LoadedRobot:
     finger_closing: dict[str, np.ndarray]
 
 
-def load_robot(client: int, robot: SimRobot, floor: int, visuals: bool = True) -> LoadedRobot:
+def load_robot(client: int, robot: SimRobot, floor: int, visuals: bool = True,
+               T_world_root: np.ndarray | None = None) -> LoadedRobot:
     """Load ``robot.urdf`` into ``client`` and bind it to ``robot``; ``floor`` is the floor's body id. Without
     ``visuals`` its visual meshes are left out (nothing to render then; ~5x faster to load, same physics).
+    ``T_world_root`` (4, 4): where the URDF's root link stands (the floor frame,
+    :attr:`scenes.description.SceneFloor.T_scene_floor`); None: the world origin.
 
     Raises:
         RobotBindingError: PyBullet cannot load the URDF, a joint or link named by ``robot`` is not in it,
@@ -54,8 +58,11 @@ def load_robot(client: int, robot: SimRobot, floor: int, visuals: bool = True) -
     """
     try:
         with c_output_logged(f"loading robot {robot.urdf}") as said:
+            at = {} if T_world_root is None or np.array_equal(T_world_root, np.eye(4)) else {
+                "basePosition": np.asarray(T_world_root)[:3, 3].tolist(),
+                "baseOrientation": quat_xyzw_from_R(np.asarray(T_world_root)[:3, :3])}
             body = pb.loadURDF(str(robot.urdf), useFixedBase=True,
-                              flags=0 if visuals else pb.URDF_IGNORE_VISUAL_SHAPES, physicsClientId=client)
+                              flags=0 if visuals else pb.URDF_IGNORE_VISUAL_SHAPES, physicsClientId=client, **at)
     except pb.error as exc:
         raise RobotBindingError(f"PyBullet cannot load robot URDF {robot.urdf}: {exc}{pybullet_said(said)}") from exc
     joints, links = body_joint_table(client, body)

@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from planners.task import parse_tasks
-from scenes.description import file_stem
+from scenes.description import file_stem, read_scene_floor
 from scenes.outcome import Outcome
 from simcheck.perturbations import Perturbation, sample_perturbation
 from simcheck.perturbed_scene import base_error_inverse, write_perturbed_scene
@@ -93,7 +93,7 @@ def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics
         opening_axis = base_error_inverse(p.base_error, pivot)[:3, :3] @ np.asarray(opening_axis, dtype=float)
     phys = dataclasses.replace(physics, robot_position_gain=physics.robot_position_gain * p.tracking_gain)
     try:
-        with World(urdf, robot, phys) as world:
+        with World(urdf, robot, phys, floor=read_scene_floor(src)) as world:      # the sample on the room's floor
             camera = None
             if out is not None and (images or video):
                 from simcheck.execute import handle_link_for

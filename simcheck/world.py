@@ -2,7 +2,7 @@
 
 A :class:`World` owns one PyBullet client (DIRECT unless ``gui=True``; never a module global). It loads
 a floor plane, the scene (:func:`simcheck.scene_loading.load_scene`: separate bodies, joint friction
-emulated, collisions filtered) and the robot with a fixed base at the world origin
+emulated, collisions filtered) and the robot with a fixed base at the floor frame's origin
 (:func:`simcheck.robot_loading.load_robot`), and fixes the time step and solver iterations so that
 stepping is deterministic. It commands the robot, steps the simulation, reads poses, velocities and
 contacts (:mod:`simcheck.contacts`), holds a grasp with a force-capped spring (:mod:`simcheck.grasp_spring`)
@@ -11,6 +11,11 @@ and renders images (:mod:`simcheck.rendering`).
 Everything is addressed by NAME (joints and links); PyBullet indices and the (x, y, z, w) quaternion
 order stay inside the adapter modules (:mod:`simcheck.bullet`). Poses come out as ``T_world_link``
 (4, 4) float64 arrays, metres.
+
+The world frame is the scene URDF's. The floor is the scene's (:func:`scenes.description.read_scene_floor`:
+recon's estimate in graph.json beside the URDF, else z = 0, z up): the ground plane lies on it, gravity
+pulls against its normal and the robot's root stands at the floor frame's origin, so the base joints'
+(x, y, yaw) are floor-frame coordinates (docs/contracts.md, "The floor").
 """
 
 from __future__ import annotations
@@ -21,8 +26,10 @@ from pathlib import Path
 
 import numpy as np
 
+from scenes.description import SceneFloor, read_scene_floor
 from simcheck.bullet import (c_output_logged, link_pose, mass_matrix, movable_joints, pb, point_jacobian,
                              point_state, pybullet_version)
+from simcheck.bullet_poses import quat_xyzw_from_R
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
 from simcheck.contacts import FLOOR, ContactPoint, excess_penetration, robot_contact_points, scene_link_contact_points
 from simcheck.errors import SceneLoadError, TaskSpecError
@@ -47,25 +54,33 @@ class World:
 
     Args:
         scene_urdf: the scene URDF (root link ``world`` or any fixed root), loaded with a fixed base.
-        robot: the robot to load (fixed base at the origin), or ``None`` for a scene-only world.
+        robot: the robot to load (fixed base at the floor frame's origin), or ``None`` for a scene-only world.
         config: physics settings.
         gui: open a PyBullet GUI window (raises :class:`SceneLoadError` when no display exists).
         visuals: load the visual shapes, which only :meth:`render` and the GUI need; without them loading
             takes ~1/4 of the time and the physics is the same (a certification without images).
+        floor: the floor to stand on; None: the scene's own (:func:`scenes.description.read_scene_floor` of
+            ``scene_urdf``; a copy of a scene written elsewhere, e.g. a robust sample, passes its source's).
+
+    Attributes:
+        scene_floor: the :class:`scenes.description.SceneFloor` the robot stands on and gravity pulls against.
 
     Raises:
         SceneLoadError: the scene URDF is missing or PyBullet cannot load it (names the file).
+        DescriptionError: the graph.json beside the scene URDF has an unusable ``floor`` (names the field).
         RobotBindingError: a robot joint or link named by ``robot`` is not in its URDF.
     """
 
     def __init__(self, scene_urdf: str | Path, robot: SimRobot | None = None,
-                 config: PhysicsConfig = DEFAULT_PHYSICS, *, gui: bool = False, visuals: bool = True) -> None:
+                 config: PhysicsConfig = DEFAULT_PHYSICS, *, gui: bool = False, visuals: bool = True,
+                 floor: SceneFloor | None = None) -> None:
         self.config = config
         self.scene_urdf = Path(scene_urdf)
         if not self.scene_urdf.is_file():
             raise SceneLoadError(f"scene URDF {self.scene_urdf} does not exist")
         if gui and not display_available():
             raise SceneLoadError("--gui needs a display (DISPLAY is not set); run headless without --gui")
+        self.scene_floor = read_scene_floor(self.scene_urdf) if floor is None else floor
         with c_output_logged("connecting to PyBullet"):
             self.client = pb.connect(pb.GUI if gui else pb.DIRECT)
         self._grasp: GraspSpring | None = None
@@ -82,7 +97,8 @@ class World:
             self._robot: LoadedRobot | None = None
             self.robot = None
             if robot is not None:
-                self._robot = load_robot(self.client, robot, self.floor, visuals or gui)
+                self._robot = load_robot(self.client, robot, self.floor, visuals or gui,
+                                         self.scene_floor.T_scene_floor)
                 self.robot = self._robot.body
         except Exception:
             self.close()
@@ -108,11 +124,16 @@ class World:
         pb.setPhysicsEngineParameter(fixedTimeStep=self.config.time_step, numSolverIterations=self.config.solver_iterations,
                                      numSubSteps=0, deterministicOverlappingPairs=1,
                                      contactBreakingThreshold=self.config.contact_breaking_threshold, physicsClientId=c)
-        pb.setGravity(0, 0, -self.config.gravity, physicsClientId=c)
+        pb.setGravity(*self.scene_floor.gravity(self.config.gravity).tolist(), physicsClientId=c)
 
     def _load_floor(self) -> int:
+        """The ground plane on the scene's floor (its body id)."""
         shape = pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=self.client)
-        return pb.createMultiBody(0, shape, physicsClientId=self.client)
+        if self.scene_floor.level:
+            return pb.createMultiBody(0, shape, physicsClientId=self.client)
+        T = self.scene_floor.T_scene_floor
+        return pb.createMultiBody(0, shape, basePosition=T[:3, 3].tolist(), baseOrientation=quat_xyzw_from_R(T[:3, :3]),
+                                  physicsClientId=self.client)
 
     # ------------------------------------------------------------------ names
     def scene_joint(self, name: str) -> JointInfo:
