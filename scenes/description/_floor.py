@@ -129,5 +129,6 @@ def read_scene_floor(scene_urdf: str | Path) -> SceneFloor:
     if n[2] <= math.cos(math.radians(45.0)):
         raise DescriptionError(f"{path}: field 'floor.normal' {np.round(n, 3).tolist()} is "
                                f"{math.degrees(math.acos(max(-1.0, min(1.0, n[2])))):.1f} deg off +z: the robot "
-                               f"cannot stand on it; {fix} with --level-floor")
+                               "cannot stand on it; rebuild the scene with `recon build --level-floor` (or remove the "
+                               "\"floor\" entry: the floor is then z = 0)")
     return SceneFloor(tuple(float(v) for v in n), h, str(path))
