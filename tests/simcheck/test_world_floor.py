@@ -21,6 +21,7 @@ from recon.scan import read_scan
 from scenes.description import read_scene_floor
 from simcheck.certification import certify
 from simcheck.config import DEFAULT_PHYSICS
+from simcheck.given_plan import certify_plan
 from simcheck.robot_binding import sim_robot_from_spec
 from simcheck.rollout import Rollout
 from simcheck.world import World
@@ -85,9 +86,9 @@ def test_the_robot_stands_on_the_estimated_floor_and_gravity_pulls_along_its_nor
             assert abs(w.scene_joint_state(name)[0] - 0.6) < 1e-4, name
 
 
-def test_a_drawer_and_a_door_are_certified_with_the_robot_on_the_floor(tilted):
+def test_a_drawer_and_a_door_are_certified_with_the_robot_on_the_floor_and_their_plans_replay(tilted):
     cert = certify(tilted / "scene.urdf", [f"open-drawer:{DRAWER}", f"open-door:{DOOR}"], out=tilted / "cert",
-                   images=False, seed=0)
+                   images=False, seed=0, save_plan=True)
     assert cert.ok, cert.summary()
     floor = read_scene_floor(tilted / "scene.urdf")
     kin = robot_kinematics(default_robot(), floor)
@@ -99,3 +100,8 @@ def test_a_drawer_and_a_door_are_certified_with_the_robot_on_the_floor(tilted):
             heights = _base_bottom_heights(kin.frame_pose(q, "base_link"), floor)
             assert np.abs(heights - BASE_CLEARANCE).max() < 1e-6
         assert "floor" not in set(r.contact_scene_link.tolist())
+    # the saved plan (joint values; tool positions in the scene's frame) replays on the same floor
+    given = certify_plan(tilted / "scene.urdf", tilted / "cert" / "plans" / f"{DRAWER}.plan.json", images=False)
+    assert given.ok, given.summary()
+    for name in ("handle_path_deviation", "opened_fraction"):
+        assert given.tasks[0].criterion(name).value == pytest.approx(cert[DRAWER].criterion(name).value, abs=2e-4)
