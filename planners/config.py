@@ -22,6 +22,11 @@ class PlannerConfig:
         pregrasp_distance: tool stand-off before the straight grasp motion, along the approach axis.
         retreat_distance: straight retreat along the approach axis after releasing; when blocked, half
             of it, down to min_retreat_distance, is tried.
+        grasp_turn_share: on a door that swings up or down (a horizontal hinge) with a round bar along the
+            hinge, the share of the door's turn the tool follows: the bar rolls about its own axis between the
+            flat pads by the rest (simcheck does not count that roll as the handle turning out of the fingers),
+            so the wrist turns less than the door (a dishwasher's handle ends low facing the floor, a flap's
+            high facing up).
         min_handle_lever: a grasp point that moves less than this per unit joint value (m/m or m/rad)
             cannot be pulled (it sits on the hinge axis).
     Default amounts
@@ -65,6 +70,7 @@ class PlannerConfig:
     pregrasp_distance: float = 0.10
     retreat_distance: float = 0.12
     min_retreat_distance: float = 0.04
+    grasp_turn_share: float = 0.5
     min_handle_lever: float = 0.05
     drawer_fraction: float = 0.9
     door_fraction: float = 0.9

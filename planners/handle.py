@@ -42,7 +42,7 @@ from planners.errors import HandleNotFoundError, HandleStaysPutError
 from scenes.description import R_about, SceneModel, Shape, ShapeKind
 from planners.task import OpenTask
 
-__all__ = ["HandleGrasp", "find_handle", "handle_link", "outward_direction"]
+__all__ = ["HandleGrasp", "find_handle", "grasp_path", "handle_link", "outward_direction"]
 
 log = logging.getLogger(__name__)
 
@@ -67,6 +67,9 @@ class HandleGrasp:
         facing: (3,) world unit direction the robot should stand along from the grasp (the front's outward
             normal) when the approach does not say it (a pinch approaches in the panel's plane); None:
             opposite the approach.
+        turn_share: share of the part's turn the tool follows while opening (1: rigidly). Below 1 only for a
+            round bar (a cylinder longer than its diameter) along a hinge that swings the approach up or
+            down: the bar rolls about its own axis between the flat pads by the rest (:func:`grasp_path`).
     """
 
     moving_link: str
@@ -76,6 +79,7 @@ class HandleGrasp:
     bar_width: float
     source: str
     facing: np.ndarray | None = None
+    turn_share: float = 1.0
 
 
 def _fixed_descendants(scene: SceneModel, link: str) -> list[str]:
@@ -246,6 +250,8 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
     moves when it opens). ``amount`` (rad, signed; 0: unknown): how far a revolute joint will turn; on a
     door that swings up or down (a horizontal hinge) the approach turns with it, and the first grasp
     candidates are tilted so that the approach is tilted by ``cfg.grasp_tilt`` half-way through the swing.
+    When the bar held there is round and lies along the hinge, the tool follows only ``cfg.grasp_turn_share`` of
+    the turn (``HandleGrasp.turn_share``; the bar rolls between the pads by the rest; paths: :func:`grasp_path`).
     A part without a handle is pinched on an edge of its front panel (:mod:`planners.edge_grasp`; source
     "panel edge") when the panel is thinner than ``grip_width`` (m, the gripper's largest opening) allows."""
     j = scene.joints[task.joint]
@@ -291,10 +297,10 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
                     if d < 0.05:
                         near.append(c)
             cands = near
-        axis, width, grasp_link, depth_geom = None, 0.0, moving, None
+        axis, width, grasp_link, depth_geom, held = None, 0.0, moving, None, None
         if cands:
             best = _outermost(scene, task.joint, cands, T_world_moving, values, direction)
-            grasp_link = best[0]
+            grasp_link, held = best[0], best
             a, _, width = _bar(best[1])
             axis = None if a is None else best[2][:3, :3] @ a
         source = "grasp_point"
@@ -311,12 +317,13 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
             source = "protruding surface"
         if not cands:
             return _edge_grasp(scene, task, every, T_world_moving, values, direction, cfg, grip_width, where)
+        held = None
         if surface is not None:      # a handle that is part of the front's own mesh
             grasp_link, depth_geom = cands[0][0], None
             p_link, axis, width = surface.p, surface.axis, surface.width
         else:
             best = _outermost(scene, task.joint, cands, T_world_moving, values, direction)
-            grasp_link, depth_geom = best[0], best
+            grasp_link, depth_geom, held = best[0], best, best
             a, centre, width = _bar(best[1])
             p_link = (best[2] @ np.append(centre, 1.0))[:3]
             axis = None if a is None else best[2][:3, :3] @ a
@@ -331,16 +338,50 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
     if depth_geom is not None:
         n_geom = depth_geom[2][:3, :3].T @ (T_world_moving[:3, :3].T @ n)   # the outward direction, geometry frame
         backoff = min(backoff, cfg.grasp_backoff_share * _depth_along(depth_geom[1], n_geom))
-    swing = 0.0
+    swing, share = 0.0, 1.0
     if j.type != "prismatic" and amount:
         T_end = scene.T_world_link(moving, {**values, task.joint: float(values.get(task.joint, 0.0)) + amount})
         z_end = T_end[:3, :3] @ (T_world_moving[:3, :3].T @ -n)
         swing = float(np.arcsin(np.clip(z_end[2], -1, 1)) - np.arcsin(np.clip(-n[2], -1, 1)))
-    frames = _grasp_frames(p_world, n, axis_world, task.kind, cfg.grasp_tilt, backoff, swing)
+        hinge = scene.T_world_link(j.parent, values)[:3, :3] @ j.T_parent_joint[:3, :3] @ j.axis
+        if abs(swing) > _SWING_CENTRED and held is not None and _round_bar(held[1]) and axis_world is not None \
+                and abs(axis_world @ hinge) > _ALONG_HINGE * np.linalg.norm(axis_world) * np.linalg.norm(hinge):
+            share = cfg.grasp_turn_share
+    frames = _grasp_frames(p_world, n, axis_world, task.kind, cfg.grasp_tilt, backoff, swing, share)
     T_link = tuple(np.linalg.solve(T_world_moving, T) for T in frames)
     geoms = frozenset((c[0], c[3]) for c in cands)
     log.debug("%s: handle via %s at %s, outward %s", where, source, p_world.round(3), n.round(3))
-    return HandleGrasp(moving, grasp_link, geoms, T_link, width, source)
+    return HandleGrasp(moving, grasp_link, geoms, T_link, width, source, turn_share=share)
+
+
+def _round_bar(geom: Shape) -> bool:
+    """A cylinder longer than its diameter: held across its axis, it rolls between flat pads."""
+    return geom.kind == "cylinder" and geom.length > 2.0 * geom.radius
+
+
+#: a grasped bar within this angle of the hinge axis (cos 15 deg) rolls in the fingers as the part turns
+_ALONG_HINGE = float(np.cos(np.radians(15.0)))
+
+
+def grasp_path(handle: HandleGrasp, index: int, T_moving: np.ndarray, s: np.ndarray, axis_link: np.ndarray
+               ) -> np.ndarray:
+    """``(m, 4, 4)`` world tool poses holding grasp candidate ``index`` of ``handle`` while the moving link is at
+    ``T_moving (m, 4, 4)`` (task joint values ``s (m,)``, the first the grasp's; ``axis_link (3,)`` the joint
+    axis, in the moving link's frame). A rigid grasp turns with the link; with ``handle.turn_share`` < 1 the tool
+    turns back about its own x axis (along the bar, along the hinge) so that it follows only that share of the
+    turn, the round bar rolling between the pads by the rest; its origin, on the bar, moves with the link."""
+    T_lg = handle.T_link_grasps[index]
+    out = T_moving @ T_lg
+    if handle.turn_share >= 1.0:
+        return out
+    sigma = float(np.sign(T_lg[:3, 0] @ np.asarray(axis_link, dtype=float)))
+    back = -sigma * (1.0 - handle.turn_share) * (np.asarray(s, dtype=float) - float(s[0]))
+    c, sn = np.cos(back), np.sin(back)
+    R = np.zeros((len(back), 3, 3))
+    R[:, 0, 0] = 1.0
+    R[:, 1, 1], R[:, 1, 2], R[:, 2, 1], R[:, 2, 2] = c, -sn, sn, c
+    out[:, :3, :3] = out[:, :3, :3] @ R
+    return out
 
 
 def _edge_grasp(scene, task, every, T_world_moving, values, direction, cfg, grip_width, where) -> HandleGrasp:
@@ -374,7 +415,7 @@ _SWING_CENTRED = np.radians(10.0)
 
 
 def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kind: str, tilt: float,
-                  backoff: float, swing: float = 0.0) -> list:
+                  backoff: float, swing: float = 0.0, share: float = 1.0) -> list:
     """Candidate ``(4, 4)`` world grasp frames at ``p`` approaching along ``-n`` with x along the bar.
 
     In order of preference: tilted (horizontal bars only) then level; at the bar centre, then held
@@ -382,7 +423,8 @@ def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kin
     a knob, ``bar_axis`` None, is held level there); each also turned half a turn about the approach axis. ``swing`` (rad, up positive): how much the
     approach's elevation changes over the opening (a door hinged at the bottom turns it up, a flap hinged
     at the top down); beyond :data:`_SWING_CENTRED` a horizontal bar is first grasped tilted by
-    ``tilt + swing / 2`` downward, so the approach is tilted by ``tilt`` half-way through the swing.
+    ``tilt + share * swing / 2`` downward, so the approach is tilted by ``tilt`` half-way through the swing
+    when the tool follows ``share`` of the part's turn.
     """
     z = -n
     ez = np.array([0.0, 0.0, 1.0])
@@ -403,7 +445,7 @@ def _grasp_frames(p: np.ndarray, n: np.ndarray, bar_axis: np.ndarray | None, kin
         down = 1.0 if (R_about(x, tilt) @ z) @ ez <= z @ ez else -1.0
         rotations = [R_about(x, down * tilt) @ R0, R0]
         if abs(swing) > _SWING_CENTRED:
-            rotations.insert(0, R_about(x, down * (tilt + swing / 2)) @ R0)
+            rotations.insert(0, R_about(x, down * (tilt + share * swing / 2)) @ R0)
     out = []
     for depth in (0.0, backoff):
         # a knob held at its cap's outer face is held level: tilted there, the lower fingertip lands on the cap's

@@ -20,7 +20,7 @@ import numpy as np
 from planners.config import PlannerConfig, default_amount
 from planners.end_reach import END_SAMPLES, end_reach
 from planners.errors import HandleStaysPutError, PlannerInputError, TaskJointError
-from planners.handle import find_handle
+from planners.handle import find_handle, grasp_path
 from planners.ik import solve_ik
 from planners.motion import TrackResult, densify, first_invalid, ik_weights, track_poses
 from planners.opening import plan_opening_constrained
@@ -167,7 +167,7 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
     step = cfg.open_step_prismatic if j.type == "prismatic" else cfg.open_step_revolute
     s_path = s0 + amount * np.linspace(0.0, 1.0, max(2, int(math.ceil(abs(amount) / step)) + 1))
     T_moving = np.array([world.moving_link_pose(s) for s in s_path])
-    T_paths = [T_moving @ T for T in handle.T_link_grasps]
+    T_paths = [grasp_path(handle, i, T_moving, s_path, j.axis) for i in range(len(handle.T_link_grasps))]
 
     t = time.perf_counter()
     hinge_xy = None
@@ -319,7 +319,9 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
     finally:
         world.keep_gripper_clear(False)
     sa = np.full(len(qa), s0)
-    T_open = np.array([world.moving_link_pose(s) for s in o.s]) @ handle.T_link_grasps[stand.grasp_index]
+    T_moving = np.array([world.moving_link_pose(s) for s in o.s])
+    T_open = T_moving @ handle.T_link_grasps[stand.grasp_index] if method == "constrained" else \
+        grasp_path(handle, stand.grasp_index, T_moving, o.s, world.scene.joints[task.joint].axis)
     q_rel = np.repeat(o.q[-1:], 2, axis=0)
     return [
         Segment("approach", qa, sa, _fk_poses(kin, qa), "open"),

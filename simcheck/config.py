@@ -62,7 +62,13 @@ class PhysicsConfig:
             spring is the tool's Cartesian stiffness under that joint impedance at every step).
         grasp_damping: damping, N*s/m, of that spring.
         grasp_max_turn: the grasp is lost when the handle has turned more than this in the fingers, rad
-            (the grasp transmits no torque; 20 deg turns a bar out of flat pads).
+            (the grasp transmits no torque; 20 deg turns a bar out of flat pads). A round bar held across
+            its axis rolls between the pads: its roll about its own axis is not counted, only the turn of
+            that axis (:func:`simcheck.grasp.round_bar_axis`).
+        grasp_roll_tolerance: both pads' contact points within this of a cylinder's radius from its axis,
+            metres, are on its round side (PyBullet's contact points lie a fraction of a millimetre off).
+        grasp_roll_angle: the fingers close across a bar's axis when their closing direction is within this
+            of perpendicular to it, rad (then flat pads touch it along lines parallel to the axis).
         grasp_contact_distance: a finger's contact point with the handle touches when it is at most this
             far, metres (PyBullet keeps contact points up to ``contact_breaking_threshold`` apart).
         grasp_normal_angle: largest angle, rad, between a finger's contact normal and its opening
@@ -103,6 +109,8 @@ class PhysicsConfig:
     grasp_stiffness: float = 7000.0
     grasp_damping: float = 50.0
     grasp_max_turn: float = 0.3490658503988659
+    grasp_roll_tolerance: float = 0.003
+    grasp_roll_angle: float = 0.2617993877991494
     grasp_contact_distance: float = 0.0005
     grasp_normal_angle: float = 0.7853981633974483
     grasp_min_travel: float = 0.001

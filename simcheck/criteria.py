@@ -78,19 +78,21 @@ def _judge(name, value, threshold, comparison, unit, description, detail_fail, d
                            detail_pass if passed else detail_fail)
 
 
-def opened_amount(r: Rollout) -> tuple[float, str]:
-    """How far the executed part opened, m or rad, from the first sample to the end, and how it was measured.
+def opened_amount(r: Rollout, end: int | None = None) -> tuple[float, str]:
+    """How far the executed part opened, m or rad, from the first sample to the end (to sample ``end``, when
+    given), and how it was measured.
 
     Along the PLANNED opening direction (``r.opening_type``, ``r.opening_axis``): the handle link's
     displacement along the axis (prismatic), or its rotation about the axis summed sample to sample
     (revolute), so a reference whose joint axis or range sign is the opposite of the estimate's is
     judged by how it moved, not by its raw joint value. Without an opening direction: the executed
     joint's value change."""
-    raw = float(r.object_q[-1] - r.object_q0)
+    last = r.n - 1 if end is None else int(end)
+    raw = float(r.object_q[last] - r.object_q0)
     axis = np.asarray(r.opening_axis, dtype=float)
-    if r.opening_type not in ("prismatic", "revolute") or not np.isfinite(axis).all() or r.n < 2:
+    if r.opening_type not in ("prismatic", "revolute") or not np.isfinite(axis).all() or last < 1:
         return raw, f"joint {r.joint}'s value changed by {raw:.3f}"
-    T = r.T_world_handle
+    T = r.T_world_handle[:last + 1]
     if r.opening_type == "prismatic":
         opened = float((T[-1, :3, 3] - T[0, :3, 3]) @ axis)
     else:
@@ -106,10 +108,17 @@ def opened_fraction(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> Criteri
     """Opening reached at the end / requested amount (see :func:`opened_amount`), at least ``c.opened_fraction``."""
     opened, how = opened_amount(r)
     frac = opened / r.requested_amount if r.requested_amount != 0 else -math.inf
+    after = ""
+    released = np.flatnonzero(r.in_segment(r.release_segment))
+    if frac < c.opened_fraction and released.size and released[0] > 0:
+        held, _ = opened_amount(r, int(released[0]) - 1)
+        if r.requested_amount != 0 and held / r.requested_amount >= c.opened_fraction:
+            after = (f"; it was {held:.3f} open when the fingers let go: it moved back by itself once released "
+                     f"(nothing holds it open)")
     return _judge("opened_fraction", frac, c.opened_fraction, ">=", "",
                   "opening reached at the end (along the planned opening direction) / opening requested",
                   f"{r.joint} opened {opened:.3f} of the requested {r.requested_amount:.3f} "
-                  f"({frac:.0%}, needs {c.opened_fraction:.0%}; {how})", how)
+                  f"({frac:.0%}, needs {c.opened_fraction:.0%}{after}; {how})", how)
 
 
 def opened_overshoot(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:

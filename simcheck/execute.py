@@ -20,7 +20,13 @@ what pad friction holds: the robot spec's ``GripperModel`` gives ``F = 2 * mu * 
 handle slides in the fingers. The force the spring needed (before the cap) is recorded every step
 (``grasp_force``: its 50 ms running mean); the grasp transmits no torque (a two-pad grip resists about
 1 N*m): the handle turns in the fingers, and the grasp is lost when it has turned more than
-``grasp_max_turn`` or the grasped point drifts more than ``grasp_break_distance`` from the tool.
+``grasp_max_turn`` or the grasped point drifts more than ``grasp_break_distance`` from the tool. A round bar
+held across its axis (a cylinder of the handle link longer than its diameter, both pads on its round side:
+:func:`simcheck.grasp.round_bar_axis`) is held at its axis, and its roll about that axis is not counted as a
+turn: flat pads let a cylinder roll, resisting it only by friction over its radius (at most
+``2 * pad_friction * grip_force * radius``; the spring on the axis transmits none, so the door turns under
+its own weight and the pull alone). A turn of that axis against the pads still counts, as every turn of a
+rectangular bar, a knob or a mesh handle does.
 
 Why a modelled grasp and not finger friction: in PyBullet a pure friction grasp of a thin handle pulled a
 drawer when the base moved but slipped when the arm pulled, unless handle friction, finger force and
@@ -40,7 +46,7 @@ from planners.handle import handle_link
 from planners.scene_urdf import read_scene_urdf
 from planners.task import SEGMENT_NAMES, PlanResult, Segment
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
-from simcheck.grasp import grasp_formation
+from simcheck.grasp import grasp_formation, round_bar_axis
 from simcheck.rollout import Rollout
 from simcheck.world import World
 
@@ -149,6 +155,7 @@ class _Recorder:
         self.planned_tool = np.full(3, np.nan)
         self.planned_object_q = np.nan
         self.T_handle_grasp: np.ndarray | None = None
+        self.roll_axis: np.ndarray | None = None       # a held round bar's axis, grasp-time tool frame
         self.sample_callback = None
         self.holding_force = world.robot_spec.gripper.holding_force
         self.slid = False
@@ -170,13 +177,39 @@ class _Recorder:
         return T[:3, :3] @ self.T_handle_grasp[:3, 3] + T[:3, 3]
 
     def turn(self, T_world_handle: np.ndarray | None = None) -> float:
-        """Angle, rad, by which the handle has turned in the fingers since the grasp (0 when not attached)."""
+        """Angle, rad, by which the handle has turned in the fingers since the grasp (0 when not attached);
+        of a held round bar (``roll_axis``), the angle its axis has turned against the pads (its roll about
+        the axis is left out)."""
         if self.T_handle_grasp is None or not self.world.attached:
             return 0.0
         T = self.world.scene_link_pose(self.handle) if T_world_handle is None else T_world_handle
         R_tool = self.world.robot_link_pose(self.world.robot_spec.tool_link)[:3, :3]
         R = (T[:3, :3] @ self.T_handle_grasp[:3, :3]).T @ R_tool
+        if self.roll_axis is not None:
+            return float(np.arccos(np.clip(self.roll_axis @ R @ self.roll_axis, -1.0, 1.0)))
         return float(np.arccos(np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)))
+
+    def held_round_bar(self, pads: np.ndarray | None, closing: np.ndarray) -> np.ndarray | None:
+        """(3,) world point on the axis of the round bar the pads hold across its axis, else None; sets
+        ``roll_axis`` (the axis in the tool frame now). ``pads`` (2, 3) the pads' contact points, ``closing``
+        (3,) a finger's closing direction, world frame."""
+        self.roll_axis = None
+        if pads is None:
+            return None
+        model = read_scene_urdf(self.world.scene_urdf)
+        if self.handle not in model.links:
+            return None
+        cylinders = [(s.T_link_shape, s.radius, s.length) for s in model.links[self.handle].collisions
+                     if s is not None and s.kind == "cylinder"]
+        T = self.world.scene_link_pose(self.handle)
+        R, p = T[:3, :3], T[:3, 3]
+        bar = round_bar_axis((np.asarray(pads) - p) @ R, R.T @ np.asarray(closing, dtype=float), cylinders,
+                             tolerance=self.config.grasp_roll_tolerance, max_angle=self.config.grasp_roll_angle)
+        if bar is None:
+            return None
+        R_tool = self.world.robot_link_pose(self.world.robot_spec.tool_link)[:3, :3]
+        self.roll_axis = R_tool.T @ (R @ bar[0])
+        return R @ bar[1] + p
 
     def track_force(self) -> None:
         """Read the grasp's force of this step into the running mean (reset when detached)."""
@@ -324,7 +357,8 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
             if slip > config.grasp_break_distance:
                 lose_grasp(f"grasp torn off at t={rec.t:.2f} s: the handle lagged the tool by {slip:.3f} m")
             elif turn > config.grasp_max_turn:
-                lose_grasp(f"handle turned out of the fingers at t={rec.t:.2f} s: it turned "
+                what = "its round bar's axis" if rec.roll_axis is not None else "it"
+                lose_grasp(f"handle turned out of the fingers at t={rec.t:.2f} s: {what} turned "
                            f"{np.degrees(turn):.0f} deg in the grasp (at most {np.degrees(config.grasp_max_turn):.0f})")
 
     def set_fingers(open_: bool, seconds: float, hold_q: np.ndarray) -> None:
@@ -344,7 +378,8 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
                                  min_width=config.grasp_min_width)
         if formed.ok:
             stiffness = dict(robot.joint_stiffness) if robot.joint_stiffness else config.grasp_stiffness
-            world.attach(handle, rec.holding_force, stiffness, config.grasp_damping)
+            held = rec.held_round_bar(formed.pads, world.finger_contacts(handle)[0].closing)
+            world.attach(handle, rec.holding_force, stiffness, config.grasp_damping, held_point=held)
             rec.slid = False
             T_w_tool = world.robot_link_pose(robot.tool_link)
             rec.T_handle_grasp = np.linalg.inv(world.scene_link_pose(handle)) @ T_w_tool

@@ -12,6 +12,13 @@ A two-finger gripper holds a handle only when the handle is between its finger p
   is at least ``min_width`` -- fingers that closed on air in front of a bar are fully closed.
 
 What it holds is the robot spec's business (``planners.robot.GripperModel``); see :mod:`simcheck.execute`.
+
+A round bar held across its axis (:func:`round_bar_axis`) rolls between the flat pads: the pads touch it along
+lines parallel to its axis, and what resists its turn about that axis is the pads' friction over the bar's
+radius, at most ``2 * pad_friction * grip_force * radius`` (the Panda's defaults on a 1 cm bar: 1.4 N*m) -- a
+door's weight turns it there. Every other turn (of a rectangular bar, a knob, a mesh handle, or of a round bar's
+axis against the pads) moves the handle's flat faces or its axis out of the pads, and loses the grasp beyond a
+few tens of degrees.
 """
 
 from __future__ import annotations
@@ -21,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FingerContacts", "GraspFormation", "grasp_formation"]
+__all__ = ["FingerContacts", "GraspFormation", "grasp_formation", "round_bar_axis"]
 
 
 @dataclass(frozen=True)
@@ -48,11 +55,13 @@ class FingerContacts:
 @dataclass(frozen=True)
 class GraspFormation:
     """Whether the fingers hold the handle: ``ok``; ``reason`` says why not (names the finger);
-    ``width`` is the handle's width between the pads, metres (NaN when not measured)."""
+    ``width`` is the handle's width between the pads, metres (NaN when not measured); ``pads`` (2, 3) the
+    two pads' mean contact points on the handle, world frame, metres (None when not both found)."""
 
     ok: bool
     reason: str
     width: float = math.nan
+    pads: np.ndarray | None = None
 
 
 def _touching(f: FingerContacts, contact_distance: float) -> np.ndarray:
@@ -98,6 +107,46 @@ def grasp_formation(fingers: tuple[FingerContacts, ...] | list[FingerContacts], 
     width = float(np.dot(pads[1] - pads[0], np.asarray(a.closing, dtype=float)))
     if width < min_width:
         return GraspFormation(False, f"the pads of {a.finger} and {b.finger} hold {width * 1e3:.1f} mm of handle "
-                                     f"{handle} between them (at least {min_width * 1e3:.1f} mm)", width)
-    return GraspFormation(True, "", width)
+                                     f"{handle} between them (at least {min_width * 1e3:.1f} mm)", width,
+                              np.array(pads))
+    return GraspFormation(True, "", width, np.array(pads))
+
+
+def round_bar_axis(pads: np.ndarray, closing: np.ndarray, cylinders, *, tolerance: float,
+                   max_angle: float) -> tuple[np.ndarray, np.ndarray] | None:
+    """The axis of the round bar the two pads hold, if they hold one across its axis.
+
+    A cylinder is a bar when it is longer than its diameter (shorter: a knob, which is judged as any handle).
+    The pads hold it across its axis when both pad contact points lie on its round side (within
+    ``tolerance`` metres of its radius from the axis, and between its ends) and the fingers close across the
+    axis (the closing direction within ``max_angle`` rad of perpendicular to it): the flat pads then touch the
+    bar along lines parallel to its axis, and it can roll about that axis between them.
+
+    Args:
+        pads: (2, 3) the pads' contact points, handle-link frame, metres.
+        closing: (3,) one finger's closing direction, handle-link frame (unit).
+        cylinders: iterable of ``(T_link_shape (4, 4), radius, length)`` of the handle link's cylinders
+            (metres; the cylinder's axis is its frame's z).
+        tolerance: metres.
+        max_angle: rad.
+
+    Returns:
+        ``(axis (3,) unit, point (3,))`` in the handle-link frame -- the point on the axis nearest the pads'
+        midpoint -- or None.
+    """
+    pads = np.asarray(pads, dtype=float).reshape(2, 3)
+    closing = np.asarray(closing, dtype=float)
+    for T, radius, length in cylinders:
+        T = np.asarray(T, dtype=float)
+        if length <= 2.0 * radius:
+            continue
+        a, c = T[:3, 2], T[:3, 3]
+        along = (pads - c) @ a
+        radial = np.linalg.norm((pads - c) - along[:, None] * a, axis=1)
+        if np.any(np.abs(along) > 0.5 * length) or np.any(np.abs(radial - radius) > tolerance):
+            continue
+        if abs(float(closing @ a)) > math.sin(max_angle):
+            continue
+        return a.copy(), c + float(along.mean()) * a
+    return None
 

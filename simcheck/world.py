@@ -364,10 +364,13 @@ class World:
         return self._robot.links.get(link) in self._robot.gripper_links
 
     # ------------------------------------------------------------------ grasp attachment
-    def attach(self, scene_link: str, max_force: float, stiffness, damping: float) -> None:
+    def attach(self, scene_link: str, max_force: float, stiffness, damping: float,
+               held_point: np.ndarray | None = None) -> None:
         """Hold the point of ``scene_link`` where the robot's tool frame origin is now with a spring to the
         tool (the compliance of a real arm following a plan under impedance control), applied as equal
-        and opposite forces every :meth:`step`; no torque. ``stiffness``: N/m (an isotropic spring), or a
+        and opposite forces every :meth:`step`; no torque. ``held_point`` (3,) world, metres: hold that point
+        of the link instead, to the point of the hand that is there now (a round bar is held on its axis, so
+        that it rolls about it between the pads; :func:`simcheck.grasp.round_bar_axis`). ``stiffness``: N/m (an isotropic spring), or a
         mapping robot joint name -> joint stiffness (N*m/rad, N/m for a prismatic joint) of the arm's
         joint impedance: the spring is then the tool's Cartesian stiffness under it at the current
         configuration, recomputed every step (:meth:`tool_stiffness`); joints not named are rigid.
@@ -387,8 +390,10 @@ class World:
         c = self.client
         obj_body, obj_idx = self._scene_link_index(scene_link)
         T_w_obj = self.scene_link_pose(scene_link)
-        p_tool = self.robot_link_position(self.robot_spec.tool_link)
-        p_local = (np.linalg.inv(T_w_obj) @ np.append(p_tool, 1.0))[:3]
+        T_tool = self.robot_link_pose(self.robot_spec.tool_link)
+        p_held = T_tool[:3, 3] if held_point is None else np.asarray(held_point, dtype=float).reshape(3)
+        p_local = (np.linalg.inv(T_w_obj) @ np.append(p_held, 1.0))[:3]
+        self._tool_point = T_tool[:3, :3].T @ (p_held - T_tool[:3, 3])
         stable = (stable_stiffness(point_jacobian(c, obj_body, obj_idx, p_local), mass_matrix(c, obj_body),
                                    self.config.time_step) if obj_idx >= 0 and movable_joints(c, obj_body) else np.inf)
         self._arm_impedance = None
@@ -433,7 +438,7 @@ class World:
             g.stiffness = self._tool_stiffness(*self._arm_impedance)
         p_h, v_h = point_state(c, g.body, g.index, g.p_local)
         tool = self._robot.links[self.robot_spec.tool_link]
-        p_t, v_t = point_state(c, self.robot, tool, np.zeros(3))
+        p_t, v_t = point_state(c, self.robot, tool, self._tool_point)
         f, slide_to = spring_force(g, p_h, v_h, p_t, v_t)
         if slide_to is not None:
             T = link_pose(c, g.body, g.index)

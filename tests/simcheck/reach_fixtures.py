@@ -8,6 +8,7 @@ hinge along the top front edge, the door swinging up and out, a bar near its bot
 Every joint opens toward positive values; the door stands 2 mm in front of the body (no contact at rest).
 A door on a horizontal hinge gets a joint friction that holds it against gravity at any angle, as the
 counterbalance springs of a dishwasher door and the friction hinges or gas struts of a flap do.
+The handle bar is a 2 cm square box (``bar="box"``) or a round bar of 2 cm diameter (``bar="round"``).
 """
 
 from __future__ import annotations
@@ -25,6 +26,14 @@ def _box(size, xyz) -> str:
     return f"    <visual>{g}</visual>\n    <collision>{g}</collision>\n"
 
 
+def _cylinder(radius: float, length: float, xyz, long_axis: int) -> str:
+    """A cylinder along link axis ``long_axis`` (0, 1, 2) centred at ``xyz``."""
+    rpy = ("0 1.5708 0", "1.5708 0 0", "0 0 0")[long_axis]
+    o = " ".join(f"{v:.4f}" for v in xyz)
+    g = f'<origin xyz="{o}" rpy="{rpy}"/><geometry><cylinder radius="{radius:.4f}" length="{length:.4f}"/></geometry>'
+    return f"    <visual>{g}</visual>\n    <collision>{g}</collision>\n"
+
+
 def _inertial(mass: float, size=(0.1, 0.1, 0.1), xyz=(0.0, 0.0, 0.0)) -> str:
     """A solid box's inertia (kg m^2) about its centre ``xyz`` (link frame)."""
     x, y, z = size
@@ -35,11 +44,13 @@ def _inertial(mass: float, size=(0.1, 0.1, 0.1), xyz=(0.0, 0.0, 0.0)) -> str:
 
 
 def single_front_urdf(path: Path, *, hinge: str, bottom: float, width: float = 0.5, height: float = 0.35,
-                      depth: float = 0.4, name: str = "unit1", upper: float = 1.5) -> Path:
+                      depth: float = 0.4, name: str = "unit1", upper: float = 1.5, bar: str = "box",
+                      friction: float | None = None) -> Path:
     """Write the cabinet with its body's bottom ``bottom`` m above the floor (0 stands on it; above, it hangs
     from an invisible wall). The door is ``width x height`` m; the joint is ``{name}_door2_joint``, limits
-    ``[0, upper]`` rad. Returns ``path``."""
-    t, w, h, d = 0.02, width, height, depth
+    ``[0, upper]`` rad, joint friction ``friction`` N*m (default: 0.2 on a vertical hinge, 12 on a horizontal
+    one). ``bar``: "box" or "round". Returns ``path``."""
+    t, w, h, d, kind = 0.02, width, height, depth, bar
     x0 = FRONT_X                                   # the body's front plane
     zc = bottom + h / 2
     body = _inertial(20.0, (d, w, h), (x0 + d / 2, 0, zc))
@@ -64,16 +75,20 @@ def single_front_urdf(path: Path, *, hinge: str, bottom: float, width: float = 0
     else:
         raise ValueError(f"hinge must be side, bottom or top, got {hinge!r}")
     panel = _inertial(3.0, (t, w, h), centre) + _box((t, w - 0.004, h - 0.004), centre)
-    handle = _inertial(0.2, bar, bar_at) + _box(bar, bar_at)
+    long_axis = 2 if hinge == "side" else 1
+    if kind not in ("box", "round"):
+        raise ValueError(f"bar must be box or round, got {kind!r}")
+    shape = _box(bar, bar_at) if kind == "box" else _cylinder(bar[0] / 2, bar[long_axis], bar_at, long_axis)
+    handle = _inertial(0.2, bar, bar_at) + shape
     # two standoffs from the bar's back to the panel's front face, near the bar's ends
     back, face = bar_at[0] + bar[0] / 2, -t / 2
-    long_axis = 2 if hinge == "side" else 1
     for sign in (-1, 1):
         at = list(bar_at)
         at[0] = (back + face) / 2
         at[long_axis] += sign * (bar[long_axis] / 2 - 0.015)
         handle += _box((face - back, 0.015, 0.015), at)
-    friction = 0.2 if hinge == "side" else 12.0     # N*m; gravity on the door: 3 kg * 9.81 * h / 2 <= 11 N*m
+    if friction is None:
+        friction = 0.2 if hinge == "side" else 12.0     # N*m; gravity on the door: 3 kg * 9.81 * h / 2 <= 11 N*m
     o = " ".join(f"{v:.4f}" for v in origin)
     a = " ".join(f"{v:g}" for v in axis)
     text = (f'<?xml version="1.0"?>\n<robot name="{name}">\n  <link name="world"/>\n'
