@@ -179,6 +179,15 @@ class FittingConfig:
     resolve 0.1-0.3 deg on the realistic scans) is refitted along that up direction without ICP: a body
     that is not one box (a carcass on a narrower plinth) is tilted by the minimum-volume box and ICP,
     and the parts refined onto it and the upright correction then move its fronts (pipeline.py)."""
+    base_yaw_tolerance: float = 0.009
+    """... and turned off the yaw the planes of its object's large vertical faces show
+    (:func:`recon.object_yaw.measured_yaw`) by more than this (rad, 0.5 deg) and 2 standard errors of that
+    yaw: Eq. 3 does not fix a noisy carcass's yaw (its score varies by 3 % over +-4 deg on a realistic
+    scan), and Alg. 1 turns every front onto it."""
+    yaw_consensus: float = 0.035
+    """Face planes of one object whose yaws (modulo 90 deg) agree within this (rad, 2 deg) are taken as
+    faces of one rigid box frame (:func:`recon.object_yaw.measured_yaw`); an opened door, the strip of a
+    round leg, a box fitted across a leg's corners do not join them."""
     panel_ratio: float = 0.3
     """A part whose thinnest extent is below this fraction of the next one is a panel (a door or drawer
     front): its thin axis is the opening's normal (fitting, joints and refinement read it)."""

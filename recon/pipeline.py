@@ -9,7 +9,8 @@ Stages, in order (each a function below; per-object state travels in an :class:`
     split_labelled_fronts  a drawer/door part showing horizontal gaps split, one part per front (front_split.py)
     fit_primitives     Eq. 3: the best primitive per part, the base part first; a fit that does not cover
                        its points is refitted with the other kinds (fitting.py, coverage.py); a base box
-                       tilted off the up direction its object's faces show is refitted along it (object_up.py)
+                       tilted off the up direction or turned off the yaw its object's faces show is refitted
+                       along them (object_up.py, object_yaw.py)
     complete_parts     hidden legs placed; legs, reaching and mounted parts extended (completion.py)
     contact_graph      surface planes Π, then the Eq. 1 contacts between parts (planes.py, contacts.py)
     build_part_tree    Eq. 4: the maximum spanning arborescence of the contacts (part_tree.py)
@@ -51,7 +52,8 @@ from recon.joint_uncertainty import with_joint_uncertainty
 from recon.joints import estimate_joints
 from recon.leveling import Floor, find_floor
 from recon.model import ContactEdge, JointEstimate, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
-from recon.object_up import measured_up, tilt_to, turned_upright
+from recon.object_up import measured_up, tilt_to, turned_upright, vertical_axis
+from recon.object_yaw import face_yaws, measured_yaw, turned_about, yaw_difference, yaw_of
 from recon.outliers import scan_without_outliers
 from recon.part_shapes import template_shapes
 from recon.part_tree import PartTree, choose_root, part_distances, part_tree
@@ -284,68 +286,111 @@ def _part_seed(seed: int, part_id: int) -> int:
 
 
 def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
-    """Eq. 3 for every part of ``obj``: the base part first, whose axes then orient the small parts
-    (fewer than ``small_part_points`` points). A fit outside the coverage bounds is refitted with the
-    other kinds of candidates (:func:`recon.fitting.fit_part_covering`); one still outside them is named
-    in a warning by :func:`check_coverage`. A body whose points show one face only is given a depth
-    behind it (:func:`recon.fitting.body_behind_face`), with a warning."""
+    """Eq. 3 for every part of ``obj``: the base part and the other large parts first, then the small
+    parts (fewer than ``small_part_points`` points), oriented by the base part's axes. A fit outside the
+    coverage bounds is refitted with the other kinds of candidates
+    (:func:`recon.fitting.fit_part_covering`); one still outside them is named in a warning by
+    :func:`check_coverage`. A base box turned off the up direction or the yaw its object's faces show is
+    refitted along them (:func:`_base_along_measured_frame`). A body whose points show one face only is
+    given a depth behind it (:func:`recon.fitting.body_behind_face`), with a warning."""
     config = run.config.fitting
     labels = {p.part_id: p.label for p in obj.parts}
     base = choose_root(labels, {p.part_id: float(len(p.points)) for p in obj.parts})
     state = ObjectState(obj, labels, {p.part_id: p.points for p in obj.parts}, base)
-    R_ref = None
-    completed = {}            # {part_id: primitive} completed beyond what its points show (the fit is kept)
-    for p in sorted(obj.parts, key=lambda p: p.part_id != base):
+    fitted: dict[int, tuple] = {}          # {part_id: (name, primitive, score, table)}
+
+    def fit(p: PartPoints, R_ref: np.ndarray | None) -> None:
         shape = _degeneracy(p.points, config.min_thickness)
         if shape:
             run.warn(f"object {obj.id} ({obj.category}) part {p.part_id} ({p.label}): its points are {shape}; "
                      f"the primitive is given the minimum thickness {config.min_thickness} m")
-        small = len(p.points) < config.small_part_points
         fit = fit_part_covering(p.points, config, run.config.coverage, seed=_part_seed(run.seed, p.part_id),
-                                normals=p.normals, R_world_ref=R_ref if small else None)
-        name, prim, score, table = fit.name, fit.primitive, fit.score, fit.table
+                                normals=p.normals, R_world_ref=R_ref)
         if fit.refused:
             log.info("%s part %d (%s): the fitted %s did not cover its points; refitted as a %s%s", obj.id,
-                     p.part_id, p.label, " then ".join(fit.refused), prim.kind.value,
+                     p.part_id, p.label, " then ".join(fit.refused), fit.primitive.kind.value,
                      f" (still: {'; '.join(fit.problems)})" if fit.problems else "")
-        if p.part_id == base:
-            upright = _base_along_measured_up(obj, p, prim, run)
-            if upright is not None:
-                name, prim, score, table = upright
-        if p.part_id == base and p.label == "body":
-            deep = body_behind_face(prim, p.normals, config)
-            if deep is not None:
-                run.warn(f"{link_name(obj.category, obj.id, p.label, p.part_id)}: its points show one face only; "
-                         f"the body is given the depth of its narrower side, {deep.size.min():.2f} m, behind it")
-                completed[p.part_id] = deep
-        if p.part_id == base:
-            R_ref = prim.T_world_part[:3, :3].copy()
+        fitted[p.part_id] = (fit.name, fit.primitive, fit.score, fit.table)
+
+    small = {p.part_id for p in obj.parts if p.part_id != base and len(p.points) < config.small_part_points}
+    for p in sorted(obj.parts, key=lambda p: p.part_id != base):
+        if p.part_id not in small:
+            fit(p, None)
+    base_part = next(p for p in obj.parts if p.part_id == base)
+    turned = _base_along_measured_frame(obj, base_part, fitted, run)
+    if turned is not None:
+        fitted[base] = turned
+    completed = {}            # {part_id: primitive} completed beyond what its points show (the fit is kept)
+    prim = fitted[base][1]
+    if base_part.label == "body":
+        deep = body_behind_face(prim, base_part.normals, config)
+        if deep is not None:
+            run.warn(f"{link_name(obj.category, obj.id, base_part.label, base)}: its points show one face only; "
+                     f"the body is given the depth of its narrower side, {deep.size.min():.2f} m, behind it")
+            completed[base] = deep
+    R_ref = prim.T_world_part[:3, :3].copy()
+    for p in obj.parts:
+        if p.part_id in small:
+            fit(p, R_ref)
+    for p in sorted(obj.parts, key=lambda p: p.part_id != base):
+        name, prim, score, table = fitted[p.part_id]
         state.fits[p.part_id] = FittedPart(prim, score, table, len(p.points))
         log.debug("object %d part %d (%s): %s, score %.4f", obj.id, p.part_id, p.label, name, score.total)
     state.prims = {i: completed.get(i, f.primitive) for i, f in state.fits.items()}
     return state
 
 
-def _base_along_measured_up(obj: ObjectPoints, part: PartPoints, prim: Primitive, run: _Run):
-    """The base part refitted as a box along the up direction the normals of its object's points show
-    (:func:`recon.object_up.measured_up`), without ICP, when its fitted box is tilted off that direction
+_NORMAL_NEIGHBOURS = 16
+"""Neighbours of a point whose plane is its estimated normal (open3d's estimate, recon.open3d_engine)."""
+
+
+def _part_normals(part: PartPoints) -> np.ndarray:
+    """(n, 3) the part's scan normals, or estimated from its points when the scan has none."""
+    from recon.open3d_engine import estimate_normals
+
+    if part.normals is not None and len(part.normals) == len(part.points):
+        return part.normals
+    return estimate_normals(part.points, _NORMAL_NEIGHBOURS)
+
+
+def _base_along_measured_frame(obj: ObjectPoints, base: PartPoints, fitted: dict[int, tuple], run: _Run):
+    """The base part refitted as a box, without ICP, along the up direction the normals of its object's
+    points show (:func:`recon.object_up.measured_up`) and the yaw the planes of its object's large parts'
+    vertical faces show (:func:`recon.object_yaw.measured_yaw`), when its fitted box is tilted off that up
     by more than ``base_tilt_tolerance`` (and less than ``max_upright_tilt``, beyond which a tilt is
-    taken as intended): (name, primitive, score, table) as :func:`recon.fitting.fit_part` returns them,
-    or None to keep the fit."""
+    taken as intended) or turned off that yaw by more than ``base_yaw_tolerance`` and 2 standard errors
+    of the measured yaw. ``fitted`` {part_id: (name, primitive, score, table)} holds the base and the
+    object's other large parts. Returns (name, primitive, score, table) as :func:`recon.fitting.fit_part`
+    does, or None to keep the fit."""
     config = run.config.fitting
-    normals = [q.normals for q in obj.parts if q.normals is not None and len(q.normals) == len(q.points)]
-    if prim.kind is not PrimitiveKind.BOX or not normals:
+    prim = fitted[base.part_id][1]
+    if prim.kind is not PrimitiveKind.BOX:
         return None
-    up = measured_up(np.concatenate(normals), config.normals_frame_cone, config.min_face_points)
-    if up is None:
+    normals = {p.part_id: _part_normals(p) for p in obj.parts if len(p.points) >= _NORMAL_NEIGHBOURS}
+    up = measured_up(np.concatenate(list(normals.values())), config.normals_frame_cone,
+                     config.min_face_points) if normals else None
+    parts = [p for p in obj.parts if p.part_id in fitted and p.part_id in normals]
+    tilt = 0.0 if up is None else tilt_to(prim, up)
+    if tilt > run.config.scene.max_upright_tilt:
         return None
-    tilt = tilt_to(prim, up)
-    if tilt <= config.base_tilt_tolerance or tilt > run.config.scene.max_upright_tilt:
+    up = vertical_axis(prim)[1] if up is None else up
+    R_up = turned_upright(prim, up)
+    faces = [f for p in parts
+             for f in face_yaws(fitted[p.part_id][1], p.points, normals[p.part_id], up, config, p.part_id)]
+    yaw = measured_yaw(faces, config.yaw_consensus, base.part_id)
+    turn = 0.0
+    if yaw is not None:
+        across = R_up[:, int(np.argmin(np.abs(R_up.T @ up)))]             # a horizontal axis of the box
+        turn = yaw_difference(yaw[0], yaw_of(across, up))
+        if abs(turn) <= max(config.base_yaw_tolerance, 2.0 * yaw[1]):
+            turn = 0.0
+    if tilt <= config.base_tilt_tolerance and turn == 0.0:
         return None
-    log.info("object %d part %d (%s): fitted %.2f deg off the up direction of its faces; refitted along it",
-             obj.id, part.part_id, part.label, np.degrees(tilt))
-    return fit_part(part.points, replace(config, candidates=("box",)), seed=_part_seed(run.seed, part.part_id),
-                    normals=part.normals, R_world_ref=turned_upright(prim, up), align=False)
+    log.info("object %d part %d (%s): fitted %.2f deg off the up direction and %.2f deg off the yaw of its "
+             "object's faces; refitted along them", obj.id, base.part_id, base.label, np.degrees(tilt),
+             np.degrees(-turn))
+    return fit_part(base.points, replace(config, candidates=("box",)), seed=_part_seed(run.seed, base.part_id),
+                    normals=base.normals, R_world_ref=turned_about(R_up, up, turn), align=False)
 
 
 def complete_parts(state: ObjectState, run: _Run) -> None:
