@@ -52,6 +52,9 @@ class ScanConfig:
     outlier_std_ratio: float = 3.0
     """... a point is an outlier when its mean neighbour distance exceeds the cloud's mean by this
     many standard deviations."""
+    normal_neighbours: int = 48
+    """A scan without normals: each part's normals are its local planes through this many of its
+    nearest points, oriented away from its object's centre (estimated_normals.py)."""
 
 
 @dataclass(frozen=True)

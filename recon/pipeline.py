@@ -45,6 +45,7 @@ from recon.completion import (complete_missing_legs, complete_mounted_parts, com
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.coverage import coverage, coverage_problems
+from recon.estimated_normals import with_estimated_normals
 from recon.fitting import FitScore, body_behind_face, fit_part, fit_part_covering
 from recon.front_split import split_fronts
 from recon.handle_shapes import HandleShapes, mounted_handle_shapes, posed_handle_shapes
@@ -162,6 +163,7 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
     t0 = time.perf_counter()
     scan = remove_outliers(scan, run)
     run.timings["outliers"] = time.perf_counter() - t0
+    scan = with_estimated_normals(scan, run.config.scan.normal_neighbours)
     scan = split_labelled_fronts(scan, run)
 
     n_obj = len(scan.objects)
