@@ -19,7 +19,7 @@ $(STAMP): pyproject.toml .ci/system-deps
 	  || { echo "partscene: the installed packages do not import (see the error above)" >&2; exit 1; }
 	touch $(STAMP)
 
-# one thread per test worker: open3d's OpenMP and BLAS reductions then sum in one order, so a recon
+# one thread per test worker: BLAS (and open3d < 0.20, OpenMP) reductions then sum in one order, so a recon
 # decision on a borderline value does not depend on the load
 test: setup
 	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 $(PY) -m pytest -n $(JOBS) -q

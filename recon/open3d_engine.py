@@ -1,9 +1,16 @@
 """The one door through which open3d enters recon: ICP, normals, RANSAC planes.
 
 Arrays in, arrays out (float64, world frame, metres); no open3d type leaks out of this module.
+
+Each call runs open3d on one thread: from 0.20 it parallelises with oneTBB, which ignores
+``OMP_NUM_THREADS`` and sums its reductions (ICP, normals) in an order that depends on the machine's
+load, so a recon decision on a borderline value would differ between an idle and a busy run of the
+same scan and seed. The limit is lifted after the call (the scanner's ray casting keeps its threads).
 """
 
 from __future__ import annotations
+
+from contextlib import contextmanager
 
 import numpy as np
 import open3d as o3d
@@ -11,6 +18,20 @@ import open3d as o3d
 __all__ = ["estimate_normals", "icp_point_to_plane", "segment_planes"]
 
 o3d.utility.set_verbosity_level(o3d.utility.VerbosityLevel.Error)
+
+
+@contextmanager
+def _one_thread():
+    """open3d limited to one thread inside the block (open3d >= 0.20; older ones follow OMP_NUM_THREADS)."""
+    limit = getattr(o3d.utility, "set_max_threads", None)
+    if limit is None:
+        yield
+        return
+    limit(1)
+    try:
+        yield
+    finally:
+        limit(0)
 
 
 def _cloud(points: np.ndarray, normals: np.ndarray | None = None) -> "o3d.geometry.PointCloud":
@@ -23,7 +44,8 @@ def _cloud(points: np.ndarray, normals: np.ndarray | None = None) -> "o3d.geomet
 def estimate_normals(points: np.ndarray, k: int = 16) -> np.ndarray:
     """(n, 3) unit normals of ``points`` (n, 3) from their k nearest neighbours (sign arbitrary)."""
     pc = _cloud(points)
-    pc.estimate_normals(o3d.geometry.KDTreeSearchParamKNN(knn=k))
+    with _one_thread():
+        pc.estimate_normals(o3d.geometry.KDTreeSearchParamKNN(knn=k))
     return np.asarray(pc.normals).copy()
 
 
@@ -31,10 +53,11 @@ def icp_point_to_plane(source: np.ndarray, target: np.ndarray, target_normals: n
                        max_distance: float, iterations: int) -> tuple[np.ndarray, float]:
     """Rigid ``T_target_source`` (4, 4) aligning ``source`` (n, 3) onto ``target`` (m, 3) by
     point-to-plane ICP from the identity; also returns the inlier RMSE (m)."""
-    res = o3d.pipelines.registration.registration_icp(
-        _cloud(source), _cloud(target, target_normals), max_distance, np.eye(4),
-        o3d.pipelines.registration.TransformationEstimationPointToPlane(),
-        o3d.pipelines.registration.ICPConvergenceCriteria(max_iteration=iterations))
+    with _one_thread():
+        res = o3d.pipelines.registration.registration_icp(
+            _cloud(source), _cloud(target, target_normals), max_distance, np.eye(4),
+            o3d.pipelines.registration.TransformationEstimationPointToPlane(),
+            o3d.pipelines.registration.ICPConvergenceCriteria(max_iteration=iterations))
     return np.asarray(res.transformation).copy(), float(res.inlier_rmse)
 
 
@@ -50,7 +73,8 @@ def segment_planes(points: np.ndarray, *, distance: float, count: int, seed: int
     for _ in range(count):
         if len(remaining) < max(min_inliers, 3):
             break
-        plane, inliers = _cloud(points[remaining]).segment_plane(distance, 3, 200)
+        with _one_thread():
+            plane, inliers = _cloud(points[remaining]).segment_plane(distance, 3, 200)
         inliers = np.asarray(inliers, dtype=np.int64)
         if len(inliers) < min_inliers:
             break
