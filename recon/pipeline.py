@@ -342,17 +342,8 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     return state
 
 
-_NORMAL_NEIGHBOURS = 16
-"""Neighbours of a point whose plane is its estimated normal (open3d's estimate, recon.open3d_engine)."""
-
-
-def _part_normals(part: PartPoints) -> np.ndarray:
-    """(n, 3) the part's scan normals, or estimated from its points when the scan has none."""
-    from recon.open3d_engine import estimate_normals
-
-    if part.normals is not None and len(part.normals) == len(part.points):
-        return part.normals
-    return estimate_normals(part.points, _NORMAL_NEIGHBOURS)
+_FRAME_PART_POINTS = 16
+"""Parts with fewer points do not vote on their object's up direction and yaw."""
 
 
 def _base_along_measured_frame(obj: ObjectPoints, base: PartPoints, fitted: dict[int, tuple], run: _Run):
@@ -368,7 +359,8 @@ def _base_along_measured_frame(obj: ObjectPoints, base: PartPoints, fitted: dict
     prim = fitted[base.part_id][1]
     if prim.kind is not PrimitiveKind.BOX:
         return None
-    normals = {p.part_id: _part_normals(p) for p in obj.parts if len(p.points) >= _NORMAL_NEIGHBOURS}
+    # every part of 3+ points has normals here: the scan's, else estimated (with_estimated_normals)
+    normals = {p.part_id: p.normals for p in obj.parts if len(p.points) >= _FRAME_PART_POINTS}
     up = measured_up(np.concatenate(list(normals.values())), config.normals_frame_cone,
                      config.min_face_points) if normals else None
     parts = [p for p in obj.parts if p.part_id in fitted and p.part_id in normals]
