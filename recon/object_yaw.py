@@ -29,6 +29,7 @@ from scipy.spatial.transform import Rotation
 
 from recon.config import FittingConfig
 from recon.primitive import Primitive, PrimitiveKind
+from scenes.description import R_onto_up
 
 __all__ = ["FaceYaw", "face_yaws", "measured_yaw", "yaw_of", "yaw_difference", "turned_about"]
 
@@ -49,16 +50,10 @@ class FaceYaw:
     part_id: int = -1
 
 
-def _levelling(up: np.ndarray) -> np.ndarray:
-    """(3, 3) the smallest rotation taking the unit ``up`` (3,) onto +z."""
-    rot, _ = Rotation.align_vectors([[0.0, 0.0, 1.0]], [up])
-    return rot.as_matrix()
-
-
 def yaw_of(direction: np.ndarray, up: np.ndarray) -> float:
     """Yaw (rad) of ``direction`` (3,) about the unit ``up`` (3,): the angle of its component across ``up``
     in the frame that the smallest rotation taking ``up`` onto +z levels (the world's yaw when up is +z)."""
-    v = _levelling(up) @ np.asarray(direction, dtype=np.float64)
+    v = R_onto_up(up) @ np.asarray(direction, dtype=np.float64)
     return float(np.arctan2(v[1], v[0]))
 
 
@@ -118,8 +113,7 @@ def _plane_fit(points: np.ndarray, pool: np.ndarray, near: np.ndarray, n0: np.nd
             return None
         X = points[mask]
         centre = X.mean(axis=0)
-        n = np.linalg.svd(X - centre, full_matrices=False)[2][2]
-        n = n * np.sign(n @ n0)
+        n = _normal(X, n0)
         r = (points - centre) @ n
         sigma = 1.4826 * float(np.median(np.abs(r[mask] - np.median(r[mask]))))
         band /= 2.0
