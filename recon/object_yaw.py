@@ -1,9 +1,9 @@
 """The yaw of an object as the planes of its faces show it.
 
-Eq. 3 does not fix a noisy body's yaw: on a realistic scan a cabinet carcass's score varies by 3 % over
-+-4 degrees of yaw about its best box, and the minimum-volume box and ICP end wherever the noise puts
-them. Alg. 1 then turns every front onto that body, and a front 0.5 m from the body's centre moves by the
-angle times that distance (a 2.8 degree error: drawer fronts 2.5 cm out of their carcass). The planes of
+Eq. 3 does not fix a noisy body's yaw: its score barely changes over a few degrees of yaw about the best
+box, and the minimum-volume box and ICP end wherever the noise puts them (measured: docs/decisions.md).
+Alg. 1 then turns every front onto that body, and a front moves by the angle times its distance from the
+body's centre, out of its carcass. The planes of
 the object's large vertical faces fix it: a drawer front or a carcass side of thousands of points fits its
 plane to a small fraction of a degree, with estimated normals as with exact ones (the normals only pick
 the face's points; the plane is fitted to the points).
