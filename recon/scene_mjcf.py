@@ -16,6 +16,9 @@ joints, inertials and shapes are the URDF's, name for name:
 MuJoCo collides a moving body with the bodies that do not move with it (and with its parent when the
 parent is the world); scene.urdf's links do not overlap at q = 0 (recon.clearance), so the model rests.
 Link pairs given in ``exclude`` become ``<contact><exclude>`` (for pairs that still overlap).
+Gravity pulls against the scene's floor: a scene kept in its scan's frame with a tilted floor (graph.json's
+``floor``) gets ``<option gravity>`` along the floor's normal, so MuJoCo loads it standing as simcheck's
+world does; a level floor keeps MuJoCo's default (0, 0, -9.81).
 Numbers are rounded as in scene.urdf (lengths 1e-6, masses and inertias 9 significant digits).
 """
 
@@ -28,10 +31,13 @@ from scipy.spatial.transform import Rotation
 
 from scenes.description import WORLD_LINK, Inertial, Joint, Link, SceneModel, Shape, ShapeKind
 
-__all__ = ["mjcf_string", "reconstruction_mjcf", "JOINT_ARMATURE"]
+__all__ = ["mjcf_string", "reconstruction_mjcf", "JOINT_ARMATURE", "GRAVITY"]
 
 JOINT_ARMATURE = 0.0
 """Armature (kg m^2 or kg) of every movable joint: 0, as a URDF joint has none."""
+
+GRAVITY = 9.81
+"""Magnitude of gravity, m/s^2 (MuJoCo's default, and simcheck's)."""
 
 _LENGTH_DECIMALS = 6
 _SIGNIFICANT = 9
@@ -124,14 +130,17 @@ def _body(parent: ET.Element, link: Link, joint: Joint) -> ET.Element:
     return body
 
 
-def mjcf_string(model: SceneModel, exclude: tuple[tuple[str, str], ...] = ()) -> str:
-    """The MJCF text of a scene ``model`` (root link ``world``, primitive shapes only)."""
+def mjcf_string(model: SceneModel, exclude: tuple[tuple[str, str], ...] = (), gravity=None) -> str:
+    """The MJCF text of a scene ``model`` (root link ``world``, primitive shapes only); ``gravity`` (3,) m/s^2
+    in the scene frame, written as ``<option gravity>`` (None: MuJoCo's default, (0, 0, -9.81))."""
     links = model.links
     children: dict[str, list[Joint]] = {}
     for j in model.joints.values():
         children.setdefault(j.parent, []).append(j)
     root = ET.Element("mujoco", model=model.name)
     ET.SubElement(root, "compiler", angle="radian", autolimits="true", inertiafromgeom="false")
+    if gravity is not None:
+        ET.SubElement(root, "option", gravity=" ".join(f"{float(g) + 0.0:.9g}" for g in np.ravel(gravity)))
     asset = ET.SubElement(root, "asset")
     materials = {}
     for link in links.values():
@@ -158,10 +167,13 @@ def mjcf_string(model: SceneModel, exclude: tuple[tuple[str, str], ...] = ()) ->
 def reconstruction_mjcf(rec) -> str:
     """scene.xml of a :class:`recon.model.Reconstruction`: :func:`mjcf_string` of its scene.urdf
     description, excluding the contacts of link pairs that still overlap by more than
-    ``ClearanceConfig.report_overlap`` (none after recon.clearance, unless it warned)."""
+    ``ClearanceConfig.report_overlap`` (none after recon.clearance, unless it warned), with gravity against
+    the floor graph.json records when that is found and not level."""
     from recon.clearance import links_in_contact
     from recon.scene_urdf import scene_model
 
     limit = rec.config.clearance.report_overlap
     exclude = tuple((a, b) for a, b, s in links_in_contact(rec.objects, rec.walls, 0.0) if s < -limit)
-    return mjcf_string(scene_model(rec), exclude)
+    floor = rec.floor
+    tilted = floor is not None and floor.found and not np.array_equal(floor.normal, (0.0, 0.0, 1.0))
+    return mjcf_string(scene_model(rec), exclude, -GRAVITY * floor.normal if tilted else None)

@@ -4,6 +4,7 @@ z-up or not in metres is refused with a message that says how to fix it."""
 
 import json
 import subprocess
+import xml.etree.ElementTree as ET
 import sys
 
 import numpy as np
@@ -16,6 +17,7 @@ from recon.leveling import Floor
 from recon.model import JointType
 from recon.pipeline import reconstruct_scan
 from recon.scan import scan_from_arrays
+from recon.scene_mjcf import reconstruction_mjcf
 
 
 def _scan(synth, T=None, *, floor=True, wall=True, points_per_m2=4000, floor_points=None):
@@ -53,6 +55,12 @@ def _bottom_along(rec, object_id, n):
     return min(float((p.primitive.corners() @ n).min()) for p in rec.object(object_id).parts)
 
 
+def _mjcf_gravity(rec):
+    """scene.xml's ``<option gravity>`` (3,), or None when it keeps MuJoCo's default."""
+    option = ET.fromstring(reconstruction_mjcf(rec)).find("option")
+    return None if option is None else np.array(option.get("gravity").split(), float)
+
+
 def _drawer(rec):
     return next(j for j in rec.joints() if j.type is JointType.PRISMATIC)
 
@@ -63,6 +71,7 @@ def test_a_level_scan_reports_its_floor_at_zero_and_keeps_its_objects_on_it(synt
     assert f.found and abs(f.height_m) < 1e-3 and f.tilt_deg < 0.1
     assert _bottom_along(rec, 1, np.array([0, 0, 1.0])) == pytest.approx(0.0, abs=1e-3)
     assert not any("floor" in w for w in rec.warnings)
+    assert _mjcf_gravity(rec) is None                     # MuJoCo's default (0, 0, -9.81)
     doc = graph_dict(rec)
     assert set(doc["floor"]) == {"height_m", "tilt_deg", "normal", "n_points"}
     back = reconstruction_from_dict(json.loads(json.dumps(doc)))
@@ -81,6 +90,7 @@ def test_a_floor_5cm_up_and_tilted_1deg_is_estimated_and_the_objects_stand_on_it
     assert np.degrees(np.arccos(abs(_drawer(rec).axis @ T[:3, 0]))) < 1.0
     assert np.allclose(rec.T_world_scan, np.eye(4))
     assert any("--level-floor" in w and "tilted 1.0 deg" in w for w in rec.warnings)
+    assert np.allclose(_mjcf_gravity(rec), -9.81 * f.normal, atol=1e-8)   # scene.xml stands on it too
 
     lev = reconstruct_scan(_scan(synth, T), level_floor=True)
     assert lev.floor.height_m == pytest.approx(0.0, abs=1e-9) and lev.floor.tilt_deg < 1e-6
