@@ -22,16 +22,18 @@ o3d.utility.set_verbosity_level(o3d.utility.VerbosityLevel.Error)
 
 @contextmanager
 def _one_thread():
-    """open3d limited to one thread inside the block (open3d >= 0.20; older ones follow OMP_NUM_THREADS)."""
+    """open3d limited to one thread inside the block (open3d >= 0.20; older ones follow OMP_NUM_THREADS);
+    the limit in force before (a caller's own, else the hardware's) is put back after it."""
     limit = getattr(o3d.utility, "set_max_threads", None)
     if limit is None:
         yield
         return
+    before = o3d.utility.get_max_threads()
     limit(1)
     try:
         yield
     finally:
-        limit(0)
+        limit(before)
 
 
 def _cloud(points: np.ndarray, normals: np.ndarray | None = None) -> "o3d.geometry.PointCloud":

@@ -62,3 +62,21 @@ def test_a_realistic_scan_without_normals_puts_the_hinge_at_the_door_not_a_board
     e = next(j for j in est.joints if j.child_part_id == doors[0].child_part_id)
     _, normal = _components(t, e, centres[t.child_part_id], _door_normal(truth.part(t.child_part_id)))
     assert normal < 0.005 and doors[0].hinge_distance_m < 0.02, (normal, doors[0].hinge_distance_m)
+
+
+def test_recon_leaves_a_callers_open3d_thread_limit_as_it_found_it():
+    import open3d as o3d
+
+    from recon.open3d_engine import estimate_normals
+
+    pts = np.random.default_rng(1).uniform(-0.5, 0.5, (200, 3))
+    before = o3d.utility.get_max_threads()
+    try:
+        o3d.utility.set_max_threads(1)
+        estimate_normals(pts)
+        assert o3d.utility.get_max_threads() == 1
+        o3d.utility.set_max_threads(0)
+        estimate_normals(pts)
+        assert o3d.utility.get_max_threads() == before
+    finally:
+        o3d.utility.set_max_threads(0)
