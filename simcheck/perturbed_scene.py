@@ -2,8 +2,9 @@
 applied (the input file is never modified). The scene model is edited as :mod:`simcheck.estimate_faults`
 does and written by :func:`scenes.description.write_urdf`.
 
-* the task joint's axis, hinge line and upper limit set to the perturbation's (world frame at q = 0); the
-  moving part's geometry, inertia and child joints stay where they are (only the articulation changes);
+* the task joint's axis, hinge line and upper limit set to the perturbation's (world frame at q = 0; the axis
+  written as a unit vector in the joint frame, whatever the perturbation's length); the moving part's
+  geometry, inertia and child joints stay where they are (only the articulation changes);
 * the joint's ``<dynamics friction damping>``; the moving link's mass and inertia scaled;
 * every link fixed below the moving link whose name contains "handle": its ``lateral_friction``
   (``<contact><lateral_friction>``) set, and moved by ``handle_shift`` (world);
@@ -57,7 +58,8 @@ def perturbed_scene(src: str | Path, p: Perturbation, pivot_xy=(0.0, 0.0)) -> Sc
     R = T_world_joint[:3, :3]
     shift_world = np.asarray(p.origin) - T_world_joint[:3, 3]
     limit = j.limit if j.limit is not None else Limit(0.0, 0.0, 100.0, 1.0)
-    changes = dict(axis=R.T @ np.asarray(p.axis), limit=dataclasses.replace(limit, upper=float(p.upper)),
+    axis = R.T @ np.asarray(p.axis, dtype=float)
+    changes = dict(axis=axis / np.linalg.norm(axis), limit=dataclasses.replace(limit, upper=float(p.upper)),
                    dynamics=Dynamics(damping=_g6(p.joint_damping), friction=_g6(p.joint_friction)))
     if np.linalg.norm(shift_world) > 0.0:
         items = _move_joint_keep_geometry(model, j, R.T @ shift_world, **changes)

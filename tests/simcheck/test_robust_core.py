@@ -222,3 +222,23 @@ def test_missing_spread_is_named(tmp_path):
     (tmp_path / "graph.json").write_text(json.dumps(_graph(read_scene_joints(tmp_path / "scene.urdf"), unc)))
     with pytest.raises(SimcheckInputError, match="uncertainty.axis_deg is missing"):
         joint_spreads_for(tmp_path / "scene.urdf", DOOR, "revolute")
+
+
+def _written_axis(text: str, joint: str) -> np.ndarray:
+    """The ``<axis xyz>`` of ``joint`` as written in URDF ``text`` (raw: the scene readers normalise it)."""
+    import xml.etree.ElementTree as ET
+
+    el = next(j for j in ET.fromstring(text).findall("joint") if j.get("name") == joint)
+    return np.array([float(x) for x in el.find("axis").get("xyz").split()])
+
+
+def test_perturbed_axis_is_written_as_a_unit_vector(scene_dir):
+    src = scene_dir / "scene.urdf"
+    for p in _samples(src, DOOR, 10, seed=5):
+        a = _written_axis(perturbed_scene_text(src, p), DOOR)
+        assert abs(np.linalg.norm(a) - 1.0) < 1e-12
+    p = _samples(src, DRAWER, 1)[0]
+    long = type(p)(**{**p.__dict__, "axis": tuple(2.5 * np.asarray(p.axis)), "base_error": (0.0, 0.0, 0.0)})
+    out = write_perturbed_scene(src, long, scene_dir / "w" / "long_axis.urdf")      # a caller's unnormalised axis
+    assert abs(np.linalg.norm(_written_axis(out.read_text(), DRAWER)) - 1.0) < 1e-12
+    assert np.allclose(read_scene_joints(out)[DRAWER].axis_world, p.axis, atol=1e-9)
