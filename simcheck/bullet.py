@@ -16,7 +16,6 @@ import tempfile
 
 import numpy as np
 
-from scenes.small_linalg import inv
 from simcheck.bullet_poses import T_from_pos_quat
 from simcheck.joint_table import JointInfo, joint_table
 
@@ -129,14 +128,18 @@ def point_jacobian(client: int, body: int, index: int, p_local: np.ndarray,
                    movable: list[int] | None = None) -> np.ndarray:
     """(3, n) linear Jacobian, world frame, m per joint unit, of the point ``p_local`` (3,) (link frame, m)
     of link ``index`` (>= 0) over the n :func:`movable_joints` of ``body`` at its current state
-    (``movable``: that list when the caller keeps it; called every physics step by the grasp spring)."""
+    (``movable``: that list when the caller keeps it; called every physics step by the grasp spring).
+
+    PyBullet's ``calculateJacobian`` takes the point from the link frame's origin, in the axes of the link's
+    inertial frame (not from the centre of mass its documentation names; bullet3 issue 4668): a door whose
+    centre of mass is 0.3 m from its hinge otherwise gets the Jacobian of a point 0.3 m off the handle."""
     movable = movable_joints(client, body) if movable is None else movable
     q = [float(st[0]) for st in pb.getJointStates(body, movable, physicsClientId=client)]
     s = pb.getLinkState(body, index, computeForwardKinematics=1, physicsClientId=client)
-    T_link_com = T_from_pos_quat(s[2], s[3])
-    p_com = (inv(T_link_com) @ np.append(np.asarray(p_local, dtype=float), 1.0))[:3]
+    R_link_inertial = T_from_pos_quat(s[2], s[3])[:3, :3]
+    p_arg = R_link_inertial.T @ np.asarray(p_local, dtype=float)
     zero = [0.0] * len(q)
-    return np.asarray(pb.calculateJacobian(body, index, p_com.tolist(), q, zero, zero, physicsClientId=client)[0],
+    return np.asarray(pb.calculateJacobian(body, index, p_arg.tolist(), q, zero, zero, physicsClientId=client)[0],
                       dtype=float).reshape(3, len(q))
 
 
