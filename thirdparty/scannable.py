@@ -1,8 +1,9 @@
 """A corpus object as a :class:`scenes.model.Scene`, so the virtual scanner (:mod:`scenes.scanner`) can scan
 it with part labels (``scan_scene(scene_of(built), params)``) and ``recon`` can rebuild it.
 
-Parts: the carcass ("body"), each front ("drawer" / "door") and each handle ("handle": a handle link, or
-the handle geometry of a front split off as its own part, fixed to the front). Shapes are the URDF's
+Parts: the carcass ("body": every link labelled so, e.g. the counter an imported object stands on), each
+front ("drawer" / "door") and each handle ("handle": a handle link, or the handle geometry of a front split
+off as its own part, fixed to the front). Shapes are the URDF's
 collision shapes; a mesh is replaced by its bounding box (the scanner ray-casts primitives). Joints are
 re-expressed in the scenes convention (axis and a point on it in the object frame, closed = 0, positive
 opens): a file's negative range becomes a positive one about the reversed axis; a continuous hinge gets
@@ -53,8 +54,10 @@ def scene_of(built: BuiltObject, object_id: int = 1, name: str | None = None) ->
         parts.append(Part(pid[0], label, T, tuple(_scannable(s) for s in shapes), DENSITY))
         return pid[0]
 
-    body_link = next(link for link, lab in built.labels.items() if lab == "body")
-    body = part("body", body_link, m.links[body_link].collisions)
+    body_links = [link for link, lab in built.labels.items() if lab == "body"]       # the carcass (and a counter)
+    T_body = m.T_world_link(body_links[0])
+    body = part("body", body_links[0], [s.moved(np.linalg.solve(T_body, m.T_world_link(link)))
+                                        for link in body_links for s in m.links[link].collisions])
     joints.append(Joint(JointType.FIXED, None, body))
     for f in built.fronts:
         j = m.joints[f.joint]
