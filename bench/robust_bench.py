@@ -1,6 +1,6 @@
 """Benchmark of robust certification:
 ``python -m bench.robust_bench [--seeds 0 1] [--samples 30] [--modes default ...] [--spreads FILE]
-[--engines processes ray] [--speed-only] [--no-speed] [--keep DIR]``.
+[--robot default|compliant|SPEC] [--engines processes ray] [--speed-only] [--no-speed] [--keep DIR]``.
 
 1. Speed: a generated kitchen is scanned (realistic preset) and reconstructed; its first drawer is certified
    with ``--robust N`` on the reconstruction (no truth), once per ``--engines`` (worker processes; Ray: a
@@ -13,7 +13,8 @@
    targets: of the tasks certified robustly at most 5 % fail against the truth; of the tasks that fail
    against the truth at least 80 % are not certified robustly. Once per ``--modes``: the default spreads
    (guarded approach; or ``--spreads FILE``), ``open-loop`` (the same errors, the plan replayed without the
-   guarded approach's correction), ``robot-errors-off`` (scan and physics spreads only).
+   guarded approach's correction), ``robot-errors-off`` (scan and physics spreads only). Both verdicts with
+   the ``--robot`` (default: the default robot; ``compliant``: the same under a softer joint impedance).
 """
 
 from __future__ import annotations
@@ -53,6 +54,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--no-speed", action="store_true", help="skip the one-drawer timing")
     p.add_argument("--modes", nargs="+", choices=MODES, default=["default"], help="robot-error modes compared")
     p.add_argument("--spreads", default=None, metavar="FILE", help="spreads file of the 'default' mode (--spreads)")
+    p.add_argument("--robot", default="default", help="'default', 'compliant' or a robot spec file (simcheck --robot)")
     p.add_argument("--engines", nargs="+", choices=("processes", "ray"), default=["processes"],
                    help="where the timed run's samples execute (each timed)")
     p.add_argument("--keep", type=Path, default=None, metavar="DIR",
@@ -61,8 +63,10 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(level=logging.ERROR)
     from scenes.description import file_stem
     from simcheck.certification import certify
+    from simcheck.robot_spec_file import load_robot_spec
 
-    print(f"cores: {os.cpu_count()}, samples per task: {args.samples}")
+    args.robot_spec = load_robot_spec(args.robot)
+    print(f"cores: {os.cpu_count()}, samples per task: {args.samples}, robot: {args.robot}")
     with tempfile.TemporaryDirectory(prefix="robust_bench_") as tmp:
         tmp = Path(tmp)
         if not args.no_speed:
@@ -79,9 +83,10 @@ def main(argv: list[str] | None = None) -> int:
                 for mode in args.modes:
                     keep = None if args.keep is None else args.keep / f"k{seed}" / mode / file_stem(task)
                     rob = certify(scene, [task], robust=args.samples, seed=seed, images=False, out=keep,
-                                  spreads=_spreads(mode, args.spreads)).tasks[0]
+                                  spreads=_spreads(mode, args.spreads), robot=args.robot_spec).tasks[0]
                     verdicts[mode], counts[mode] = rob.status, (rob.robust or {}).get("successes")
-                tru = certify(scene, [task], against=d / "truth.urdf", seed=seed, images=False).tasks[0]
+                tru = certify(scene, [task], against=d / "truth.urdf", seed=seed, images=False,
+                              robot=args.robot_spec).tasks[0]
                 rows.append((seed, task, verdicts, tru.status))
                 print(f"  kitchen {seed} {task}: robust " + ", ".join(
                     f"[{m}] {verdicts[m].value} ({counts[m]}/{args.samples})" for m in args.modes)
@@ -122,7 +127,7 @@ def _speed(args, tmp: Path) -> bool:
         cpu0, t0 = _cpu_seconds(), time.perf_counter()
         try:
             cert = certify(scene, [drawer], robust=args.samples, images=False, spreads=args.spreads,
-                           robust_engine=engine)
+                           robust_engine=engine, robot=args.robot_spec)
             wall = time.perf_counter() - t0
         finally:
             if engine == "ray":

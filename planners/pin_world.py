@@ -229,12 +229,15 @@ class PlanningWorld:
             every scene link but the part the task moves: a neighbouring front or handle, estimated a few
             millimetres off, is not brushed on the way; near the grasp (grasp, opening, release, retreat) the
             gripper may come as close as the grasp needs (a pinch next to the carcass).
+        approach_clearance: metres the gripper keeps instead while :meth:`keep_gripper_clear` is on (None:
+            ``clearance``).
     """
 
     PREFIX = "scene::"
 
     def __init__(self, robot: RobotKinematics, scene: SceneModel, task_joint: str,
-                 handle_geoms: set, scene_state: dict | None = None, clearance: float = 0.0):
+                 handle_geoms: set, scene_state: dict | None = None, clearance: float = 0.0,
+                 approach_clearance: float | None = None):
         self.robot = robot
         self.scene = scene
         self.task_joint = task_joint
@@ -304,6 +307,7 @@ class PlanningWorld:
             elif a < nr and b >= nr and b != fi and b not in own:
                 self._gripper_scene_pairs.append(k)
         self._clearance = float(clearance)
+        self._approach_clearance = float(clearance if approach_clearance is None else approach_clearance)
         self._allow = False
         self.manager = pin.BroadPhaseManager_DynamicAABBTreeCollisionManager(self.model, self.geom, self.gdata)
         self.checks = 0
@@ -342,7 +346,7 @@ class PlanningWorld:
         """From now on the gripper keeps the clearance from scene links other than the task's part (``on``), or
         may touch them (the default, near the grasp)."""
         for k in self._gripper_scene_pairs:
-            self.gdata.collisionRequests[k].security_margin = self._clearance if on else 0.0
+            self.gdata.collisionRequests[k].security_margin = self._approach_clearance if on else 0.0
 
     def _set_allow(self, allow: bool) -> None:
         if allow != self._allow:

@@ -153,7 +153,8 @@ def plan_open_task(robot: RobotSpec, scene_urdf, task: OpenTask, seed: int = 0, 
         return PlanResult(PlanStatus.OPENING_FAILED, f"{task.kind} {task.joint!r}: {exc}", task, robot.joint_names,
                           amount=amount, start_object_q=s0, moving_link=scene.joints[task.joint].child, seed=seed,
                           timings={"total": time.perf_counter() - t_all})
-    world = PlanningWorld(kin, scene, task.joint, set(handle.handle_geoms), state, cfg.clearance)
+    world = PlanningWorld(kin, scene, task.joint, set(handle.handle_geoms), state, cfg.clearance,
+                          cfg.approach_clearance)
     rng = np.random.default_rng(seed)
     base = dict(task=task, joint_names=robot.joint_names, amount=amount, start_object_q=s0,
                 moving_link=handle.moving_link, grasp_link=handle.grasp_link, seed=seed, timings=timings)

@@ -32,7 +32,8 @@ import numpy as np
 
 from scenes.description import write_text_atomic
 
-__all__ = ["RobotSpec", "GripperModel", "default_robot", "robot_cache_dir", "PANDA_HOME", "PANDA_JOINT_STIFFNESS"]
+__all__ = ["RobotSpec", "GripperModel", "default_robot", "robot_cache_dir", "PANDA_HOME", "PANDA_JOINT_STIFFNESS",
+           "PANDA_COMPLIANT_JOINT_STIFFNESS"]
 
 #: Panda arm joint acceleration limits, rad/s^2 (Franka Emika's published joint limits, libfranka docs).
 PANDA_MAX_ACCELERATION = (15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0)
@@ -45,6 +46,10 @@ PANDA_HOME = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
 #: Joint stiffness, N*m/rad, of the Panda's internal joint impedance controller under which it follows a
 #: joint trajectory: the values libfranka's examples set (``setDefaultBehavior`` in examples_common.cpp).
 PANDA_JOINT_STIFFNESS = (3000.0, 3000.0, 3000.0, 2500.0, 2500.0, 2000.0, 2000.0)
+#: Joint stiffness, N*m/rad, of a compliant Panda: the gains of libfranka's joint impedance example
+#: (``examples/joint_impedance_control.cpp``, ``k_gains``): the kind of compliant control real door and drawer
+#: opening uses (docs/decisions.md). ``default_robot(compliant=True)``.
+PANDA_COMPLIANT_JOINT_STIFFNESS = (600.0, 600.0, 600.0, 600.0, 250.0, 150.0, 50.0)
 
 
 @dataclass(frozen=True)
@@ -264,9 +269,11 @@ def _panda_body_xml() -> str:
     return body
 
 
-def default_robot() -> RobotSpec:
+def default_robot(compliant: bool = False) -> RobotSpec:
     """The default mobile manipulator: planar base + torso lift (0 to :data:`TORSO_TRAVEL` m, home at 0) +
-    Franka Panda + parallel gripper.
+    Franka Panda + parallel gripper. Its arm follows a plan under the joint impedance of
+    :data:`PANDA_JOINT_STIFFNESS` (libfranka's default), or with ``compliant`` under the softer
+    :data:`PANDA_COMPLIANT_JOINT_STIFFNESS` (simcheck's ``--robot compliant``).
 
     Writes the combined URDF into :func:`robot_cache_dir` at first use (see the module docstring).
     """
@@ -301,5 +308,6 @@ def default_robot() -> RobotSpec:
         finger_open=0.04,
         finger_closed=0.0,
         max_finger_force=20.0,
-        joint_stiffness=(math.inf,) + PANDA_JOINT_STIFFNESS,      # the torso lift's column taken as rigid
+        joint_stiffness=(math.inf,) + (PANDA_COMPLIANT_JOINT_STIFFNESS if compliant else PANDA_JOINT_STIFFNESS),
+        # (the torso lift's column taken as rigid)
     )

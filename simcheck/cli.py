@@ -75,7 +75,9 @@ def _parser() -> argparse.ArgumentParser:
                    help="close tasks: how far open the part starts, m or rad (one for all or one per task; "
                         "default: what an opening would request)")
     c.add_argument("--against", default=None, help="reference URDF to execute on (joints matched by name)")
-    c.add_argument("--robot", default="default", help="'default' or a robot spec YAML/JSON file")
+    c.add_argument("--robot", default="default",
+                   help="'default', 'compliant' (the default robot under a softer joint impedance) or a robot spec "
+                        "YAML/JSON file")
     c.add_argument("--save-plan", action="store_true",
                    help="also write each task's plan as DIR/plans/<joint>.plan.json (partscene.plan/1, replayable "
                         "with certify-plan)")
@@ -122,7 +124,7 @@ def main(argv: list[str] | None = None) -> int:
         from scenes.output_folder import output_folder
         from simcheck.certification import certify
         from simcheck.errors import SimcheckInputError
-        from simcheck.robot_spec_file import load_robot_spec
+        from simcheck.robot_spec_file import is_named_robot, load_robot_spec
         from simcheck.run import run_scenario
         from simcheck.scenario import load_scenario
 
@@ -133,7 +135,7 @@ def main(argv: list[str] | None = None) -> int:
             if args.all_movable and args.task:
                 raise SimcheckInputError("give --task or --all-movable, not both")
             robot = load_robot_spec(args.robot)
-            spec_file = args.robot if args.robot not in (None, "", "default") else None
+            spec_file = None if is_named_robot(args.robot) else args.robot
             inputs = {"scene": args.scene, "against": args.against, "robot_spec": spec_file, "spreads": args.spreads}
             settings = {"tasks": args.task, "all_movable": args.all_movable, "amounts": args.amount, "froms": args.froms,
                         "seed": args.seed or 0, "robust": args.robust, "min_success": args.min_success,
@@ -144,7 +146,7 @@ def main(argv: list[str] | None = None) -> int:
                                amounts=args.amount or None, froms=args.froms or None, seed=args.seed or 0, out=staging, robot=robot,
                                images=not args.no_images, video=args.video, gui=args.gui, robust=args.robust,
                                min_success=args.min_success, replay_sample=args.replay_sample,
-                               save_plan=(args.robot if args.robot == "default" else str(Path(args.robot).resolve()))
+                               save_plan=(args.robot if is_named_robot(args.robot) else str(Path(args.robot).resolve()))
                                if args.save_plan else False,
                                files={k: v for k, v in (("robot_spec", spec_file), ("spreads", args.spreads)) if v}
                                or None, **robust_run)
@@ -162,7 +164,7 @@ def main(argv: list[str] | None = None) -> int:
         else:
             sc = load_scenario(args.scenario)
             inputs = {"scenario": args.scenario, "scene": sc.scene, "against": sc.against,
-                      "robot_spec": sc.robot if sc.robot != "default" else None,
+                      "robot_spec": None if is_named_robot(sc.robot) else sc.robot,
                       **{f"plan{i}": t for i, t in enumerate(sc.tasks) if isinstance(t, Path)}}
             with output_folder(args.out, "simcheck run", inputs=inputs, settings={"seed": args.seed, **outputs},
                                overwrite=args.overwrite, verdict="certificate.json") as staging:

@@ -28,7 +28,7 @@ SCENARIO_SCHEMA = {
     "properties": {
         "scene": {"type": "string", "description": "the path of the scene URDF to plan on"},
         "against": {"type": ["string", "null"], "description": "the path of a reference URDF, or null"},
-        "robot": {"type": "string", "description": "'default' or the path of a robot spec file"},
+        "robot": {"type": "string", "description": "'default', 'compliant' or the path of a robot spec file"},
         "seed": {"type": "integer", "description": "an integer"},
         "tasks": {
             "type": "array", "minItems": 1, "description": "a non-empty list",

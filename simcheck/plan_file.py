@@ -30,6 +30,7 @@ import numpy as np
 from planners.task import GRIPPER_COMMANDS, Expectation, Segment
 from simcheck.errors import PlanFileError
 from simcheck.file_schemas import check_document
+from simcheck.robot_spec_file import is_named_robot
 
 __all__ = ["PLAN_FORMAT", "PLAN_SCHEMA", "GivenPlan", "read_plan", "plan_from_dict", "plan_to_dict", "write_plan",
            "plan_from_arrays", "join_plans"]
@@ -46,7 +47,7 @@ PLAN_SCHEMA = {
     "description": "a mapping with 'format', 'joint_names' and 'segments'",
     "properties": {
         "format": {"type": "string", "description": f"the string {PLAN_FORMAT!r}"},
-        "robot": {"type": "string", "description": "'default' or the path of a robot spec file"},
+        "robot": {"type": "string", "description": "'default', 'compliant' or the path of a robot spec file"},
         "joint_names": {"type": "array", "minItems": 1, "items": {"type": "string"},
                         "description": "a non-empty list of the robot's joint names (base x, y, yaw first)"},
         "segments": {
@@ -194,7 +195,7 @@ def plan_from_dict(doc, source="<dict>", base: Path | None = None) -> GivenPlan:
         seg, fingers_open = _segment(s, i, names, fingers_open, source)
         segments.append(seg)
     robot = str(doc.get("robot", "default"))
-    if robot != "default" and base is not None:
+    if not is_named_robot(robot) and base is not None:
         robot = str((base / robot).resolve())
     return GivenPlan(robot=robot, joint_names=names, segments=tuple(segments), source=str(source))
 

@@ -1,4 +1,6 @@
-"""``--robot SPEC``: the default robot, or a robot described in a YAML/JSON file.
+"""``--robot SPEC``: a named robot (:data:`ROBOT_NAMES`: ``default``, or ``compliant`` -- the default robot
+under the softer joint impedance of ``planners.robot.PANDA_COMPLIANT_JOINT_STIFFNESS``), or a robot described
+in a YAML/JSON file.
 
 A robot spec file holds the fields of ``planners.RobotSpec`` (``urdf`` relative to the file)::
 
@@ -27,7 +29,16 @@ from pathlib import Path
 from simcheck.errors import RobotBindingError
 from simcheck.file_schemas import ROBOT_SPEC_SCHEMA, check_document, read_document
 
-__all__ = ["load_robot_spec"]
+__all__ = ["load_robot_spec", "is_named_robot", "ROBOT_NAMES"]
+
+ROBOT_NAMES = ("default", "compliant")
+"""Robots ``--robot`` names instead of a spec file: ``planners.default_robot()`` and
+``planners.default_robot(compliant=True)``."""
+
+
+def is_named_robot(spec) -> bool:
+    """True when ``spec`` names a built-in robot (None and "" mean "default") rather than a spec file."""
+    return spec in (None, "") or spec in ROBOT_NAMES
 
 
 def load_robot_spec(spec: str | None):
@@ -40,11 +51,12 @@ def load_robot_spec(spec: str | None):
     """
     import planners
 
-    if spec in (None, "", "default"):
-        return planners.default_robot()
+    if is_named_robot(spec):
+        return planners.default_robot(compliant=spec == "compliant")
     path = Path(spec)
     if not path.is_file():
-        raise RobotBindingError(f"robot spec {path} does not exist (use --robot default or a YAML/JSON file)")
+        raise RobotBindingError(f"robot spec {path} does not exist (use --robot {' / '.join(ROBOT_NAMES)} or a "
+                               f"YAML/JSON file)")
     doc = read_document(path, "robot spec", RobotBindingError)
     check_document(doc, ROBOT_SPEC_SCHEMA, "robot spec", path, RobotBindingError)
     doc = dict(doc)

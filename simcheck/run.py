@@ -6,7 +6,7 @@ from pathlib import Path
 
 from simcheck.certificate import Certificate
 from simcheck.certification import certify
-from simcheck.robot_spec_file import load_robot_spec
+from simcheck.robot_spec_file import is_named_robot, load_robot_spec
 from simcheck.scenario import load_scenario
 
 __all__ = ["run_scenario", "assert_certified"]
@@ -21,7 +21,7 @@ def run_scenario(path, *, out=None, seed: int | None = None, images: bool = True
     The certificate records the scenario file's sha256 beside the scene's (``Certificate.files``)."""
     sc = load_scenario(path)
     robot = load_robot_spec(sc.robot)
-    files = {"scenario": sc.path, "robot_spec": None if sc.robot == "default" else sc.robot,
+    files = {"scenario": sc.path, "robot_spec": None if is_named_robot(sc.robot) else sc.robot,
              **{f"plan{i}": t for i, t in enumerate(sc.tasks) if isinstance(t, Path)}, **kwargs.pop("files", {})}
     tasks, planner = list(sc.tasks), None
     if any(isinstance(t, Path) for t in tasks):

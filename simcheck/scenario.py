@@ -5,7 +5,7 @@ state carried from task to task (drawer A stays open while door B is opened).
 
     scene: truth.urdf            # relative paths are relative to the YAML file
     against: null                # optional reference URDF to execute on
-    robot: default               # or a robot spec file (see simcheck.robot_spec)
+    robot: default               # or compliant, or a robot spec file (see simcheck.robot_spec_file)
     seed: 0
     tasks:
       - open-drawer:cabinet3_drawer12_joint
@@ -27,6 +27,7 @@ from pathlib import Path
 from planners.task import ACTIONS, OpenTask, parse_task
 from simcheck.errors import ScenarioError
 from simcheck.file_schemas import SCENARIO_SCHEMA, check_document
+from simcheck.robot_spec_file import is_named_robot
 
 __all__ = ["Scenario", "load_scenario"]
 
@@ -94,7 +95,7 @@ def load_scenario(path: str | Path) -> Scenario:
 
     seed = doc.get("seed", 0)
     robot = str(doc.get("robot", "default"))
-    if robot != "default":
+    if not is_named_robot(robot):
         robot = str(resolve(robot))
     return Scenario(path=path, scene=resolve(doc["scene"]), against=resolve(doc.get("against")), robot=robot,
                     seed=seed, tasks=tuple(_task(t, path, i) for i, t in enumerate(tasks)))

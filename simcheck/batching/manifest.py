@@ -12,7 +12,7 @@ Each entry is a scene to certify or a scan to reconstruct first::
       tasks: all-movable
       seed: 0                             # optional (default 0): planning and reconstruction seed
       amount: 0.2                         # optional: opening for every task of the entry (m or rad)
-      robot: robot.yaml                   # optional: "default" or a robot spec file
+      robot: robot.yaml                   # optional: "default", "compliant" or a robot spec file
       robust: 20                          # optional: certify each task in 20 sampled worlds (simcheck.robust)
       min_success: 0.9                    # optional with robust (default 0.9)
 
@@ -36,6 +36,7 @@ from pathlib import Path
 import yaml
 
 from simcheck.errors import SimcheckInputError
+from simcheck.robot_spec_file import is_named_robot
 
 __all__ = ["Entry", "ManifestError", "read_manifest", "ALL_MOVABLE", "FAULTS"]
 
@@ -63,7 +64,7 @@ class Entry:
         against: reference URDF to execute on (a scan's ``truth``), or None.
         scan, labels: the scan files of a scan entry, else None.
         tasks: task strings ("open-drawer:JOINT", ...) or None for all movable joints.
-        robot: "default" or a robot spec file path.
+        robot: "default", "compliant" or a robot spec file path.
         seed: planning (and reconstruction) seed.
         amount: opening for every task (m or rad), or None for the default.
         robust: sampled worlds per task (``simcheck certify --robust N``), or None.
@@ -218,8 +219,8 @@ def _entry(path: Path, line: int, doc: dict, lines: dict) -> Entry:
                              f"got {amount!r}")
     robot = doc.get("robot", "default")
     if not isinstance(robot, str) or not robot:
-        raise fail("robot", f"expected 'default' or a robot spec file, got {robot!r}")
-    if robot != "default":
+        raise fail("robot", f"expected 'default', 'compliant' or a robot spec file, got {robot!r}")
+    if not is_named_robot(robot):
         robot = str(file("robot"))
     fault = doc.get("_fault")
     if fault is not None and fault not in FAULTS:

@@ -32,6 +32,7 @@ from pathlib import Path
 from simcheck.batching.keys import file_digest, scan_key, task_key
 from simcheck.batching.manifest import Entry
 from simcheck.batching.store import Store
+from simcheck.robot_spec_file import is_named_robot
 
 __all__ = ["Job", "RunSettings", "run_jobs", "jobs_for_entries", "all_movable_tasks", "chunk_size", "MAX_CHUNK", "ray_session", "ray_cpu_seconds", "BACKSTOP_FACTOR", "BACKSTOP_SECONDS"]
 
@@ -108,7 +109,7 @@ def _scene_jobs(entry: Entry, scene: Path, against: Path | None, tasks: list[str
     """One job per task; a task in ``missing`` (a wrong reconstruction) is recorded ``failed`` and one in
     ``unusable`` (no opening range to certify) ``unusable``, each with its reason, without running."""
     digests = (file_digest(scene), file_digest(against),
-               "default" if entry.robot == "default" else file_digest(entry.robot))
+               entry.robot if is_named_robot(entry.robot) else file_digest(entry.robot))
     jobs = []
     for task in tasks:
         key = task_key(digests[0], digests[1], task, digests[2], _settings(entry, settings))

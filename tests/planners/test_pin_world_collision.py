@@ -146,3 +146,12 @@ def test_on_the_approach_the_gripper_keeps_the_clearance_from_a_neighbour_but_no
     q_left = closest_free(left)
     world.keep_gripper_clear(True)
     assert not world.in_collision(q_left, 0.0)
+    # the approach's own clearance (PlannerConfig.approach_clearance): 3 mm lets the gripper come 5 mm from the neighbour
+    near = PlanningWorld(kin, scene, left.joint, set(h.handle_geoms), {}, 0.01, approach_clearance=0.003)
+    near.keep_gripper_clear(True)
+    assert not near.in_collision(q_right, 0.0)
+    far = PlanningWorld(kin, scene, left.joint, set(h.handle_geoms), {}, 0.01, approach_clearance=0.03)
+    far.keep_gripper_clear(True)
+    assert far.in_collision(q_right, 0.0)
+    far.keep_gripper_clear(False)
+    assert not far.in_collision(q_right, 0.0)

@@ -99,3 +99,15 @@ def test_the_robot_spec_schema_has_exactly_the_robot_spec_fields():
 def test_a_conforming_document_has_no_problems():
     assert schema_problems(yaml.safe_load(GOOD_SCENARIO), SCENARIO_SCHEMA) == []
     assert schema_problems(_robot_doc(), ROBOT_SPEC_SCHEMA) == []
+
+
+def test_the_compliant_robot_is_the_default_robot_under_libfrankas_joint_impedance_example_gains(tmp_path):
+    from planners.robot import PANDA_COMPLIANT_JOINT_STIFFNESS
+    from simcheck.robot_binding import sim_robot_from_spec
+
+    stiff, soft = load_robot_spec("default"), load_robot_spec("compliant")
+    assert soft.joint_stiffness[1:] == PANDA_COMPLIANT_JOINT_STIFFNESS == (600.0, 600.0, 600.0, 600.0, 250.0, 150.0, 50.0)
+    assert dataclasses.replace(soft, joint_stiffness=stiff.joint_stiffness) == stiff
+    assert ("panda_joint6", 150.0) in sim_robot_from_spec(soft).joint_stiffness
+    (tmp_path / "s.yaml").write_text("scene: s.urdf\nrobot: compliant\ntasks: [open-drawer:d]\n")
+    assert load_scenario(tmp_path / "s.yaml").robot == "compliant"      # a name, not a file beside the scenario
