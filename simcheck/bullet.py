@@ -19,7 +19,7 @@ import numpy as np
 from simcheck.bullet_poses import T_from_pos_quat
 from simcheck.joint_table import JointInfo, joint_table
 
-__all__ = ["movable_joints", "point_jacobian", "mass_matrix", "pb", "c_output_logged", "pybullet_said", "pybullet_version", "body_joint_table", "link_pose",
+__all__ = ["movable_joints", "point_jacobian", "jacobian_point", "mass_matrix", "pb", "c_output_logged", "pybullet_said", "pybullet_version", "body_joint_table", "link_pose",
            "point_state"]
 
 
@@ -124,22 +124,29 @@ def movable_joints(client: int, body: int) -> list[int]:
             if pb.getJointInfo(body, j, physicsClientId=client)[2] != pb.JOINT_FIXED]
 
 
-def point_jacobian(client: int, body: int, index: int, p_local: np.ndarray,
-                   movable: list[int] | None = None) -> np.ndarray:
-    """(3, n) linear Jacobian, world frame, m per joint unit, of the point ``p_local`` (3,) (link frame, m)
-    of link ``index`` (>= 0) over the n :func:`movable_joints` of ``body`` at its current state
-    (``movable``: that list when the caller keeps it; called every physics step by the grasp spring).
-
-    PyBullet's ``calculateJacobian`` takes the point from the link frame's origin, in the axes of the link's
-    inertial frame (not from the centre of mass its documentation names; bullet3 issue 4668): a door whose
-    centre of mass is 0.3 m from its hinge otherwise gets the Jacobian of a point 0.3 m off the handle."""
-    movable = movable_joints(client, body) if movable is None else movable
-    q = [float(st[0]) for st in pb.getJointStates(body, movable, physicsClientId=client)]
+def jacobian_point(client: int, body: int, index: int, p_local: np.ndarray) -> list[float]:
+    """The point ``p_local`` (3,) (frame of link ``index`` >= 0 of ``body``, m) as PyBullet's
+    ``calculateJacobian`` takes it: from the link frame's origin, in the axes of the link's inertial frame
+    (not from the centre of mass its documentation names; bullet3 issue 4668), m. The inertial frame is
+    fixed in the link: a caller that needs the Jacobian of the same point every step keeps this."""
     s = pb.getLinkState(body, index, computeForwardKinematics=1, physicsClientId=client)
     R_link_inertial = T_from_pos_quat(s[2], s[3])[:3, :3]
-    p_arg = R_link_inertial.T @ np.asarray(p_local, dtype=float)
+    return (R_link_inertial.T @ np.asarray(p_local, dtype=float)).tolist()
+
+
+def point_jacobian(client: int, body: int, index: int, p_local: np.ndarray,
+                   movable: list[int] | None = None, p_arg: list[float] | None = None) -> np.ndarray:
+    """(3, n) linear Jacobian, world frame, m per joint unit, of the point ``p_local`` (3,) (link frame, m)
+    of link ``index`` (>= 0) over the n :func:`movable_joints` of ``body`` at its current state
+    (``movable``: that list when the caller keeps it, ``p_arg``: :func:`jacobian_point` of ``p_local`` when
+    it keeps that; the grasp spring calls this every physics step). A door whose centre of mass is 0.3 m
+    from its hinge would get the Jacobian of a point 0.3 m off the handle were the point taken from the
+    centre of mass (:func:`jacobian_point`)."""
+    movable = movable_joints(client, body) if movable is None else movable
+    q = [float(st[0]) for st in pb.getJointStates(body, movable, physicsClientId=client)]
+    p_arg = jacobian_point(client, body, index, p_local) if p_arg is None else p_arg
     zero = [0.0] * len(q)
-    return np.asarray(pb.calculateJacobian(body, index, p_arg.tolist(), q, zero, zero, physicsClientId=client)[0],
+    return np.asarray(pb.calculateJacobian(body, index, p_arg, q, zero, zero, physicsClientId=client)[0],
                       dtype=float).reshape(3, len(q))
 
 

@@ -27,8 +27,8 @@ from pathlib import Path
 import numpy as np
 
 from scenes.description import SceneFloor, read_scene_floor
-from simcheck.bullet import (c_output_logged, link_pose, mass_matrix, movable_joints, pb, point_jacobian,
-                             point_state, pybullet_version)
+from simcheck.bullet import (c_output_logged, jacobian_point, link_pose, mass_matrix, movable_joints, pb,
+                             point_jacobian, point_state, pybullet_version)
 from simcheck.bullet_poses import quat_xyzw_from_R
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
 from simcheck.contacts import FLOOR, ContactPoint, excess_penetration, robot_contact_points, scene_link_contact_points
@@ -87,6 +87,7 @@ class World:
         self._arm_impedance: tuple[list[int], np.ndarray] | None = None    # (Jacobian columns, joint stiffness)
         self._q_target: np.ndarray | None = None
         self._movable: list[int] | None = None
+        self._tool_jac_point: list[float] | None = None
         try:
             self._setup_physics()
             self.floor = self._load_floor()
@@ -429,7 +430,9 @@ class World:
 
     def _tool_stiffness(self, cols: list[int], joint_stiffness: np.ndarray) -> np.ndarray:
         tool = self._robot.links[self.robot_spec.tool_link]
-        J = point_jacobian(self.client, self.robot, tool, np.zeros(3), self._robot_movable())
+        if self._tool_jac_point is None:      # the tool origin as PyBullet's Jacobian takes it: fixed
+            self._tool_jac_point = jacobian_point(self.client, self.robot, tool, np.zeros(3))
+        J = point_jacobian(self.client, self.robot, tool, np.zeros(3), self._robot_movable(), self._tool_jac_point)
         return cartesian_stiffness(J[:, cols], joint_stiffness)
 
     def _apply_grasp_spring(self) -> None:
