@@ -10,7 +10,9 @@ The budget (:class:`Budget`) is a watchdog thread: past the time budget, or when
 resident memory passes the memory budget, it raises :class:`TaskTimeout` / :class:`TaskMemoryExceeded`
 in the task's thread (at its next Python bytecode); if the task is still running
 :data:`GRACE_SECONDS` later (stuck in C code), the watchdog stores the record itself and ends the worker
-process, which Ray replaces.
+process, which Ray replaces. Without a memory budget the watchdog only waits for the time budget (it
+reads no memory beside the task); a record's ``peak_rss_mb`` is then the worker process's peak resident
+memory since it started (the kernel's high-water mark).
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ from __future__ import annotations
 import ctypes
 import inspect
 import os
+import resource
 import signal
 import socket
 import threading
@@ -44,8 +47,10 @@ class TaskMemoryExceeded(BaseException):
 
 class Budget:
     """A watchdog over the calling thread: ``seconds`` of wall time and ``memory_mb`` of the process's
-    resident memory (None: no limit). Use as a context manager around the task; ``on_kill(status,
-    reason)`` is called before the process is ended when the task does not unwind in time."""
+    resident memory (None: no limit; the memory is then not polled). Use as a context manager around the
+    task; ``on_kill(status, reason)`` is called before the process is ended when the task does not unwind
+    in time. ``peak_mb`` after the block: the largest resident memory polled, or the process's peak
+    resident memory since it started (``getrusage``), whichever is larger, MB."""
 
     def __init__(self, seconds: float | None, memory_mb: float | None, on_kill=None) -> None:
         self.seconds, self.memory_mb, self.on_kill = seconds, memory_mb, on_kill
@@ -63,8 +68,13 @@ class Budget:
     def __exit__(self, *exc) -> None:
         self._stop.set()
         self._thread.join()
+        self.peak_mb = max(self.peak_mb, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
 
     def _watch(self) -> None:
+        if self.memory_mb is None:      # a time budget alone: one wait, no polling beside the task
+            if not self._stop.wait(self.seconds) and self.seconds is not None:
+                self._fire(TaskTimeout, "timeout", f"still running after --task-timeout {self.seconds:g} s")
+            return
         import psutil
 
         proc = psutil.Process()
