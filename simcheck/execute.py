@@ -167,6 +167,7 @@ class _Recorder:
         dof = len(world.robot_spec.joint_names)
         self.effort_history = np.zeros((self.window, dof))  # per step: |motor torque| / effort limit
         self.effort_peak = np.zeros(dof)                 # largest running mean since the last sample
+        self.sampled_at = -1                              # the step of the last sample
 
     def grasp_point(self, T_world_handle: np.ndarray | None = None) -> np.ndarray:
         """(3,) world position of the grasped point of the handle (NaN when not attached);
@@ -188,6 +189,15 @@ class _Recorder:
         if self.roll_axis is not None:
             return float(np.arccos(np.clip(self.roll_axis @ R @ self.roll_axis, -1.0, 1.0)))
         return float(np.arccos(np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)))
+
+    def slip_and_turn(self) -> tuple[float, float]:
+        """(distance, m, from the grasped point of the handle to the tool origin; :meth:`turn`, rad) now: the
+        values this step's sample recorded when one was just taken (the same world state), else read."""
+        r = self.rows
+        if self.sampled_at == self.steps and r["t"]:
+            return float(np.linalg.norm(r["grasp_point"][-1] - r["tool_pos"][-1])), r["grasp_turn"][-1]
+        tool = self.world.robot_link_position(self.world.robot_spec.tool_link)
+        return float(np.linalg.norm(self.grasp_point() - tool)), self.turn()
 
     def held_round_bar(self, pads: np.ndarray | None, closing: np.ndarray) -> np.ndarray | None:
         """(3,) world point on the axis of the round bar the pads hold across its axis, else None; sets
@@ -254,6 +264,7 @@ class _Recorder:
     def sample(self) -> None:
         w, r = self.world, self.rows
         k = len(r["t"])
+        self.sampled_at = self.steps
         q, qd = w.scene_joint_state(self.joint)
         v, om = w.scene_link_velocity(self.moving)
         r["t"].append(self.t)
@@ -352,8 +363,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
             notes.append(f"the handle slid in the fingers from t={rec.t:.2f} s: the grasp had to transmit more than "
                          f"the gripper holds ({rec.holding_force:.0f} N)")
         if rec.steps % config.record_every == 0 and world.attached and rec.T_handle_grasp is not None:
-            slip = float(np.linalg.norm(rec.grasp_point() - world.robot_link_position(robot.tool_link)))
-            turn = rec.turn()
+            slip, turn = rec.slip_and_turn()
             if slip > config.grasp_break_distance:
                 lose_grasp(f"grasp torn off at t={rec.t:.2f} s: the handle lagged the tool by {slip:.3f} m")
             elif turn > config.grasp_max_turn:
