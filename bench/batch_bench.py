@@ -3,7 +3,9 @@
 Generates kitchens (truth only: a cabinet with a door and drawers, a microwave door, refrigerator doors;
 about 7 tasks each) and certifies every drawer and door of their truth scenes:
 1. plain ``simcheck.certify`` of each task in this (warm) process, one after the other: the reference,
-   and where one certification's time goes (world set-up, planning, re-check, physics, writing);
+   and where one certification's time goes (world set-up, planning, re-check, physics, writing); half
+   of the tasks (every other one) before the batches and half after them, so that a machine whose speed
+   drifts during the bench (other jobs starting or ending) weighs on plain and batch alike;
 2. ``simcheck.batch`` of the same tasks on a local Ray with 1 worker, then with 2 workers;
 3. the batch again on its finished folder (the resume).
 
@@ -12,7 +14,10 @@ of every process of the batch (this driver, Ray's services, the workers with the
 start-up is included once per batch and so amortised over its tasks), and the overhead over plain
 certify as the ratio of their CPU times. Wall-time numbers (certifications per core-hour as wall time x
 workers, the 2-core speed-up, the wall overhead) are only meaningful on an idle machine: the output marks
-them ``[idle]`` and prints the load average. Also: resume time, worker memory, and whether every batch
+them ``[idle]`` and prints the load average. CPU times too are slowed by other jobs on the machine
+(they share its caches and cores): the bench prints how many cores other processes kept busy during
+each phase (``/proc/stat`` less this bench's own processes), so a comparison between phases can be
+trusted only when those figures are near 0. Also: resume time, worker memory, and whether every batch
 certificate equals the plain one (criteria to 1e-9); then the issue's targets (YES/NO).
 """
 
@@ -33,24 +38,37 @@ __all__ = ["main"]
 TARGET_PER_HOUR, TARGET_SPEEDUP, TARGET_OVERHEAD, TARGET_RESUME = 5000.0, 1.7, 0.10, 0.10
 
 
-def _plain(tasks: list[tuple[Path, str]], out: Path) -> tuple[float, list, dict]:
-    """Certify each task with plain certify; returns (wall s, certificates, mean seconds by stage)."""
+def _plain(tasks: list[tuple[Path, str]], which: range, out: Path, stages: dict) -> tuple[float, float, dict]:
+    """Certify the tasks ``which`` (indices into ``tasks``) with plain certify; appends each one's seconds
+    by stage to ``stages`` (and its CPU seconds, by index, to ``stages["cpu_of"]``); returns (wall s, CPU s,
+    certificates by index)."""
     import simcheck
 
-    certs, stages = [], {"setup+write": [], "plan": [], "recheck": [], "execute": [], "total": []}
+    certs = {}
     t_all, cpu_all = time.perf_counter(), time.process_time()
-    for i, (scene, task) in enumerate(tasks):
-        t0 = time.perf_counter()
+    for i in which:
+        scene, task = tasks[i]
+        t0, c0 = time.perf_counter(), time.process_time()
         cert = simcheck.certify(scene, [task], seed=0, out=out / f"plain{i}", images=False)
         wall = time.perf_counter() - t0
+        stages.setdefault("cpu_of", {})[i] = time.process_time() - c0
         t = cert.tasks[0].timings
-        certs.append(cert)
+        certs[i] = cert
         for k in ("plan", "recheck", "execute"):
-            stages[k].append(t.get(k, 0.0))
-        stages["total"].append(wall)
-        stages["setup+write"].append(wall - t.get("total", 0.0))
-    stages["cpu"] = [(time.process_time() - cpu_all) / len(tasks)]
-    return time.perf_counter() - t_all, certs, {k: statistics.mean(v) for k, v in stages.items()}
+            stages.setdefault(k, []).append(t.get(k, 0.0))
+        stages.setdefault("total", []).append(wall)
+        stages.setdefault("setup+write", []).append(wall - t.get("total", 0.0))
+    return time.perf_counter() - t_all, time.process_time() - cpu_all, certs
+
+
+def _busy_cpu() -> float:
+    """CPU seconds every process of the machine has used since boot (``/proc/stat``; 0 elsewhere)."""
+    try:
+        fields = Path("/proc/stat").read_text().split("\n", 1)[0].split()[1:]
+    except OSError:
+        return 0.0
+    ticks = [int(x) for x in fields[:8]]
+    return (sum(ticks) - ticks[3] - ticks[4]) / os.sysconf("SC_CLK_TCK")    # all but idle and iowait
 
 
 def _images_cost(scene: Path, task: str, out: Path) -> float:
@@ -117,17 +135,37 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{n} tasks ({args.kitchens} kitchens, truth scenes), folder {root}; {os.cpu_count()} cores, load average "
           f"{load:.1f}: numbers marked [idle] are wall-time and only meaningful on an idle machine")
 
-    plain_wall, plain, stages = _plain(tasks, root / "plain")
-    plain_cpu = stages["cpu"] * n
+    stages: dict = {}
+    busy0 = _busy_cpu()
+    wall_a, cpu_a, certs = _plain(tasks, range(0, n, 2), root / "plain", stages)
+    foreign = {"plain": _busy_cpu() - busy0 - cpu_a}
     img = _images_cost(*tasks[0], root / "plain")
-    print(f"\nplain certify, one warm process: {plain_wall:.1f} s wall [idle], {stages['cpu']:.3f} s CPU a task")
+
+    busy0 = _busy_cpu()
+    w1, r1 = _batch(manifest, root / "batch1", 1)
+    foreign["batch, 1 worker"] = _busy_cpu() - busy0 - _cpu(r1.run)
+    busy0 = _busy_cpu()
+    w2, r2 = _batch(manifest, root / "batch2", 2)
+    foreign["batch, 2 workers"] = _busy_cpu() - busy0 - _cpu(r2.run)
+    wr, rr = _batch(manifest, root / "batch2", 2)
+    busy0 = _busy_cpu()
+    wall_b, cpu_b, more = _plain(tasks, range(1, n, 2), root / "plain", stages)
+    foreign["plain"] += _busy_cpu() - busy0 - cpu_b
+    certs.update(more)
+    plain = [certs[i] for i in range(n)]
+    plain_wall, plain_cpu = wall_a + wall_b, cpu_a + cpu_b
+    cpu_of = stages.pop("cpu_of")
+    stages = {k: statistics.mean(v) for k, v in stages.items()}
+    stages["cpu"] = plain_cpu / n
+    halves = (cpu_a / len(range(0, n, 2)), cpu_b / max(1, len(range(1, n, 2))))
+    print(f"\nplain certify, one warm process: {plain_wall:.1f} s wall [idle], {stages['cpu']:.3f} s CPU a task (every "
+          f"other task before the batches: {halves[0]:.3f}, the others after them: {halves[1]:.3f})")
     print("where one certification's time goes (mean wall s): " + ", ".join(
         f"{k} {v:.3f}" for k, v in stages.items() if k != "cpu"))
     print(f"the same first task with key-frame images: {img:.3f} s (a batch renders none unless --images)")
+    print("other processes on this machine kept busy on average (cores; 0 on an idle machine): " + ", ".join(
+        f"{k} {v / w:.2f}" for (k, v), w in zip(foreign.items(), (plain_wall, w1, w2))))
 
-    w1, r1 = _batch(manifest, root / "batch1", 1)
-    w2, r2 = _batch(manifest, root / "batch2", 2)
-    wr, rr = _batch(manifest, root / "batch2", 2)
     same1, d1 = _same(r1.rows, root / "batch1", plain)
     same2, d2 = _same(r2.rows, root / "batch2", plain)
     cpu1, cpu2 = _cpu(r1.run), _cpu(r2.run)
@@ -152,11 +190,20 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  {rate_c:,.0f} certifications per core-hour of CPU time; wall {wall:.1f} s = {rate_w:,.0f} per "
               f"core-hour [idle]")
     fixed += c1.get("workers", 0.0) - task_cpu
+    # each task's CPU in the 1-worker batch over its plain CPU, for the tasks certified plainly before the
+    # batches and for those after them: alike when a batch task itself costs more, apart when the machine drifted
+    ratio = [r.get("cpu_seconds", 0.0) / cpu_of[i] - 1 for i, r in enumerate(recs1) if i > 0 and cpu_of[i] > 0]
+    before = [x for i, x in zip(range(1, n), ratio) if i % 2 == 0]
+    after = [x for i, x in zip(range(1, n), ratio) if i % 2 == 1]
     per_task = task_cpu / n / stages["cpu"] - 1
     print(f"\n1-worker run: the tasks' own CPU time {task_cpu / n:.3f} s a task (plain {stages['cpu']:.3f} s: "
           f"{100 * per_task:+.1f}%); once per batch {fixed:.1f} s (driver incl. `import ray` {c1['driver']:.1f}, Ray "
           f"services {c1.get('ray_services', 0.0):.1f} -- start-up plus a slow burn that grows with the wall time, so "
           f"with the load -- worker imports and idle {c1.get('workers', 0.0) - task_cpu:.1f})")
+    if before and after:
+        print(f"  a task's CPU in the batch over its plain CPU, median (first task left out: the worker's imports): "
+              f"{100 * statistics.median(before):+.1f}% for the tasks certified plainly before the batches, "
+              f"{100 * statistics.median(after):+.1f}% for those after them (apart: the machine's speed drifted)")
     print(f"overhead over plain certify at 1 worker: {100 * over_cpu:+.1f}% of CPU time, the once-per-batch cost "
           f"amortised over these {n} tasks (over 1,000 tasks: {100 * (per_task + fixed / (1000 * stages['cpu'])):+.1f}%); "
           f"{100 * over_wall:+.1f}% of wall time [idle]")
@@ -164,7 +211,8 @@ def main(argv: list[str] | None = None) -> int:
           f"from CPU times (1 worker's / the busiest of 2 workers'; start-up left out): {est_speedup:.2f}x")
     print(f"resume of the finished batch: {wr:.2f} s = {100 * wr / w2:.1f}% of its first run "
           f"(computed {rr.computed}, resumed {rr.resumed})")
-    print(f"worker peak resident memory: median {statistics.median(rss):.0f} MB, max {max(rss):.0f} MB")
+    print(f"worker peak resident memory (a worker process's high-water mark): median {statistics.median(rss):.0f} MB, "
+          f"max {max(rss):.0f} MB")
     print(f"batch certificates equal to plain certify (criteria to 1e-9): 1 worker {same1} (max diff {d1:.2g}), "
           f"2 workers {same2} (max diff {d2:.2g})")
 
