@@ -47,6 +47,11 @@ __all__ = ["HandleGrasp", "find_handle", "grasp_path", "handle_link", "outward_d
 log = logging.getLogger(__name__)
 
 PROTRUDING_SHARE = 0.5
+#: a prismatic part whose largest face's normal is within this cosine of perpendicular to its motion slides
+#: across its front (a sliding door): its handle stands out of that face and is approached along its normal
+SLIDING_ALIGNMENT = float(np.cos(np.radians(75.0)))
+#: ... and no geometry of it shows more than this share of that face's area along the motion (a drawer's front)
+SLIDING_EDGE_SHARE = 0.25
 """An unnamed geometry counts as a handle only if the area it shows along the outward direction is under this
 share of the panel's (a handle or knob, not a second panel)."""
 
@@ -187,16 +192,17 @@ def _extent(geom: Shape) -> float:
     return float(max(geom.size)) if geom.kind is ShapeKind.BOX else 1.0
 
 
-def _protruding(scene, joint, cands, T_world_moving, values, direction) -> list:
+def _protruding(scene, joint, cands, T_world_moving, values, direction, outward=None) -> list:
     """The candidate geometries that stand out of the front: their centre lies beyond the outer face of the
     panel (the geometry showing the largest area along the part's outward direction), and they are small beside it (the area
     they show along that direction under ``PROTRUDING_SHARE`` of the panel's). A knob (stem and cap), a handle given as
-    unnamed mesh geometry of the moving link. Empty when nothing stands out (a front without a handle)."""
+    unnamed mesh geometry of the moving link. Empty when nothing stands out (a front without a handle).
+    ``outward`` (3,) world: the side to look on instead of the part's motion (:func:`sliding_front`)."""
     if len(cands) < 2:
         return []
     sizes = [_box_extent(c[1]) for c in cands]
     centre = np.mean([(T_world_moving @ c[2] @ np.append(_bar(c[1])[1], 1.0))[:3] for c in cands], axis=0)
-    v = direction * outward_direction(scene, joint, centre, values)
+    v = direction * outward_direction(scene, joint, centre, values) if outward is None else np.asarray(outward)
     if np.linalg.norm(v) < 1e-9:
         return []
     n_link = T_world_moving[:3, :3].T @ (v / np.linalg.norm(v))      # outward, moving-link frame
@@ -219,6 +225,39 @@ def _protruding(scene, joint, cands, T_world_moving, values, direction) -> list:
         if p @ n_link > outer - 1e-4 and facing_area(c, size) < PROTRUDING_SHARE * facing_area(panel, panel_size):
             out.append(c)
     return out
+
+
+def sliding_front(scene: SceneModel, joint: str, geoms: list, T_world_moving: np.ndarray, values: dict,
+                  direction: float = 1.0) -> np.ndarray | None:
+    """The outward unit normal (3,) world of a part that slides across its own front -- a sliding door or
+    sash: a prismatic joint moving within ``SLIDING_ALIGNMENT`` of the plane of the part's largest upright
+    face, no geometry of the part showing ``SLIDING_EDGE_SHARE`` of that face's area along the motion --
+    on the side away from the parent link's geometry (the carcass behind it); None for anything else (a
+    drawer moves along its front's normal). ``geoms``: the part's ``(link, geometry, T_moving_geom, index)``."""
+    j = scene.joints[joint]
+    if j.type != "prismatic" or not geoms:
+        return None
+    motion = direction * outward_direction(scene, joint, T_world_moving[:3, 3], values)
+    if np.linalg.norm(motion) < 1e-9:
+        return None
+    motion = motion / np.linalg.norm(motion)
+    best, normal, along = 0.0, None, 0.0
+    for c in geoms:
+        e, R = _box_extent(c[1]), T_world_moving[:3, :3] @ c[2][:3, :3]
+        m = np.abs(R.T @ motion)
+        along = max(along, float(e[0] * e[1] * m[2] + e[1] * e[2] * m[0] + e[0] * e[2] * m[1]))
+        for k in range(3):
+            area = float(np.prod(np.delete(e, k)))
+            if area > best and abs(R[2, k]) < 0.5:       # an upright face (a drawer's bottom is not a front)
+                best, normal = area, R[:, k]
+    if normal is None or abs(float(normal @ motion)) > SLIDING_ALIGNMENT or along > SLIDING_EDGE_SHARE * best:
+        return None
+    centre = np.mean([(T_world_moving @ c[2])[:3, 3] for c in geoms], axis=0)
+    T_parent = scene.T_world_link(j.parent, values)
+    behind = [(T_parent @ g.T_link_shape)[:3, 3] for g in scene.links[j.parent].collisions]
+    if not behind:
+        return None
+    return normal * (1.0 if float((centre - np.mean(behind, axis=0)) @ normal) >= 0 else -1.0)
 
 
 def _box_extent(geom: Shape) -> np.ndarray:
@@ -264,7 +303,7 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
         T = np.linalg.solve(T_world_moving, scene.T_world_link(link, values))
         return [(link, g, T @ g.T_link_shape, k) for k, g in enumerate(scene.links[link].collisions)]
 
-    cands, source = [], ""
+    cands, source, front = [], "", None
     if task.grasp_link is not None:
         if task.grasp_link not in scene.links:
             raise HandleNotFoundError(f"{where}: grasp_link {task.grasp_link!r} is not a link of the scene")
@@ -282,8 +321,9 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
             every = [c for ln in [moving] + fixed_below for c in geoms_of(ln)]
             cands = [c for c in every if "handle" in _name(c)]
             source = "named geometry"
+            front = sliding_front(scene, task.joint, every, T_world_moving, values, direction)
             if not cands and task.grasp_point is None:
-                cands = _protruding(scene, task.joint, every, T_world_moving, values, direction)
+                cands = _protruding(scene, task.joint, every, T_world_moving, values, direction, front)
                 source = "protruding geometry"
     cands = [c for c in cands if c[1] is not None]
     if task.grasp_point is not None:
@@ -332,7 +372,7 @@ def find_handle(scene: SceneModel, task: OpenTask, values: dict, cfg: PlannerCon
     if np.linalg.norm(v) < cfg.min_handle_lever * (1.0 if j.type == "prismatic" else 1.0):
         raise HandleStaysPutError(f"{where}: the handle at {np.round(p_world, 3).tolist()} does not move when "
                                   f"the joint opens (it lies on the hinge axis)")
-    n = v / np.linalg.norm(v)
+    n = v / np.linalg.norm(v) if front is None else front      # a sliding front: approached along its normal
     axis_world = None if axis is None else T_world_moving[:3, :3] @ axis
     backoff = cfg.grasp_backoff
     if depth_geom is not None:

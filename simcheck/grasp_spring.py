@@ -5,7 +5,8 @@ The adapter (:meth:`simcheck.world.World.attach`) reads the two points' states e
 force returned here as equal and opposite external forces, and moves the held point when it slides.
 The spring's stiffness is a (3, 3) matrix: the arm's Cartesian stiffness at the tool under its joint
 impedance (:func:`cartesian_stiffness`), or an isotropic one; it is capped where the explicit, once per
-step integration of the spring stays stable (:func:`stable_stiffness`).
+step integration of the spring stays stable (:func:`stable_stiffness`), and so is its damping
+(:func:`stable_damping`).
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ import numpy as np
 
 from scenes.small_linalg import eigh, inv
 
-__all__ = ["GraspSpring", "spring_force", "cartesian_stiffness", "stable_stiffness"]
+__all__ = ["GraspSpring", "spring_force", "cartesian_stiffness", "stable_stiffness", "stable_damping"]
 
 
 @dataclass
@@ -29,6 +30,7 @@ class GraspSpring:
         configuration; damping :
         N*s/m; cap : the largest force the grasp transmits, N
     max_stiffness : stiffness eigenvalues above this, N/m, are lowered to it (``inf``: none)
+    max_damping : damping above this, N*s/m, is lowered to it (``inf``: none)
     force : the norm of the force holding the point took in the last step, before the cap, N
     slid : the force has reached the cap since the grasp was made
     """
@@ -40,6 +42,7 @@ class GraspSpring:
     damping: float
     cap: float
     max_stiffness: float = float("inf")
+    max_damping: float = float("inf")
     force: float = 0.0
     slid: bool = False
 
@@ -52,6 +55,24 @@ def cartesian_stiffness(J: np.ndarray, joint_stiffness: np.ndarray) -> np.ndarra
     return inv((J / np.asarray(joint_stiffness, dtype=float)) @ J.T)
 
 
+def _smallest_effective_mass(J: np.ndarray, M: np.ndarray) -> float:
+    """kg: ``1 / max eig(J M^-1 J^T)`` of a point with (3, n) linear Jacobian ``J`` on a body of (n, n) mass
+    matrix ``M``; ``inf`` when the point cannot move."""
+    J = np.asarray(J, dtype=float)
+    if not J.size:
+        return float("inf")
+    top = float(np.linalg.eigvalsh(J @ np.linalg.solve(np.asarray(M, dtype=float), J.T)).max())
+    return float("inf") if top <= 1e-12 else 1.0 / top
+
+
+def stable_damping(J: np.ndarray, M: np.ndarray, time_step: float) -> float:
+    """Largest damping, N*s/m, of a damper integrated explicitly once per ``time_step`` s on the point of
+    :func:`stable_stiffness`: its smallest effective mass over the time step (one step then takes away at most
+    the relative velocity, never reverses it; above twice that it diverges: an 80 g window sash under the
+    50 N*s/m grasp at 1/160 s). ``inf`` when the point cannot move."""
+    return _smallest_effective_mass(J, M) / time_step
+
+
 def stable_stiffness(J: np.ndarray, M: np.ndarray, time_step: float) -> float:
     """Largest stiffness, N/m, of a spring integrated explicitly once per ``time_step`` s on a point of a
     body whose (3, n) linear Jacobian over its n joints is ``J`` and (n, n) mass matrix is ``M``: the
@@ -59,11 +80,7 @@ def stable_stiffness(J: np.ndarray, M: np.ndarray, time_step: float) -> float:
     frequency x time step = 0.71, well inside the bound of 2 of an undamped oscillator: the held link,
     the hand under its position motors and the solver couple; at 1.0 a third-party microwave door's
     grasp still diverged). ``inf`` when the point cannot move."""
-    J = np.asarray(J, dtype=float)
-    if not J.size:
-        return float("inf")
-    top = float(np.linalg.eigvalsh(J @ np.linalg.solve(np.asarray(M, dtype=float), J.T)).max())
-    return float("inf") if top <= 1e-12 else 1.0 / top / (2.0 * time_step ** 2)
+    return _smallest_effective_mass(J, M) / (2.0 * time_step ** 2)
 
 
 def spring_force(spring: GraspSpring, p_held: np.ndarray, v_held: np.ndarray, p_tool: np.ndarray,
@@ -73,7 +90,7 @@ def spring_force(spring: GraspSpring, p_held: np.ndarray, v_held: np.ndarray, p_
     velocities (3,) m/s. Records the uncapped force and the slide in ``spring``.
 
     The force is ``K @ stretch + damping * relative velocity`` (``K``: ``spring.stiffness`` with its
-    eigenvalues capped at ``spring.max_stiffness``), capped at ``spring.cap``; when the spring force
+    eigenvalues capped at ``spring.max_stiffness``, the damping at ``spring.max_damping``), capped at ``spring.cap``; when the spring force
     alone exceeds the cap, the held point slides toward the tool so that the spring stays at the cap."""
     K = np.asarray(spring.stiffness, dtype=float)
     if K.ndim == 0:
@@ -83,7 +100,7 @@ def spring_force(spring: GraspSpring, p_held: np.ndarray, v_held: np.ndarray, p_
         K = (V * np.minimum(w, spring.max_stiffness)) @ V.T
     stretch = p_tool - p_held
     f_spring = K @ stretch
-    f = f_spring + spring.damping * (v_tool - v_held)
+    f = f_spring + min(spring.damping, spring.max_damping) * (v_tool - v_held)
     norm = float(np.linalg.norm(f))
     spring.force = norm
     slide_to = None

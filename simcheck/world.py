@@ -34,7 +34,7 @@ from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
 from simcheck.contacts import FLOOR, ContactPoint, excess_penetration, robot_contact_points, scene_link_contact_points
 from simcheck.errors import SceneLoadError, TaskSpecError
 from simcheck.grasp import FingerContacts
-from simcheck.grasp_spring import GraspSpring, cartesian_stiffness, spring_force, stable_stiffness
+from simcheck.grasp_spring import GraspSpring, cartesian_stiffness, spring_force, stable_damping, stable_stiffness
 from simcheck.joint_table import JointInfo
 from simcheck.rendering import render
 from simcheck.robot_binding import SimRobot
@@ -382,7 +382,8 @@ class World:
         The spring is integrated explicitly, once per physics step: its stiffness is capped at the
         grasped part's smallest effective mass at the held point over the time step squared
         (:func:`simcheck.grasp_spring.stable_stiffness`; stiffer, a Panda pulling a light microwave door
-        along its stiff direction made it diverge).
+        along its stiff direction made it diverge), its damping at that mass over the time step
+        (:func:`simcheck.grasp_spring.stable_damping`).
 
         While attached, the fingers hold their current opening and do not collide with ``scene_link``:
         the attachment is the grasp, and finger contacts squeezing the same link made the solver fight
@@ -395,15 +396,19 @@ class World:
         p_held = T_tool[:3, 3] if held_point is None else np.asarray(held_point, dtype=float).reshape(3)
         p_local = (np.linalg.inv(T_w_obj) @ np.append(p_held, 1.0))[:3]
         self._tool_point = T_tool[:3, :3].T @ (p_held - T_tool[:3, 3])
-        stable = (stable_stiffness(point_jacobian(c, obj_body, obj_idx, p_local), mass_matrix(c, obj_body),
-                                   self.config.time_step) if obj_idx >= 0 and movable_joints(c, obj_body) else np.inf)
+        stable, stable_d = np.inf, np.inf
+        if obj_idx >= 0 and movable_joints(c, obj_body):
+            J, M = point_jacobian(c, obj_body, obj_idx, p_local), mass_matrix(c, obj_body)
+            stable, stable_d = (stable_stiffness(J, M, self.config.time_step),
+                                stable_damping(J, M, self.config.time_step))
         self._arm_impedance = None
         if isinstance(stiffness, dict):
             self._arm_impedance = self._joint_columns(stiffness)
             K = self._tool_stiffness(*self._arm_impedance)
         else:
             K = float(stiffness) * np.eye(3)
-        self._grasp = GraspSpring(obj_body, obj_idx, p_local, K, float(damping), float(max_force), float(stable))
+        self._grasp = GraspSpring(obj_body, obj_idx, p_local, K, float(damping), float(max_force), float(stable),
+                                  float(stable_d))
         self._set_finger_collisions(obj_body, obj_idx, enabled=False)
         f = self.finger_q()
         pb.setJointMotorControlArray(self.robot, self._robot.finger_index, pb.POSITION_CONTROL,

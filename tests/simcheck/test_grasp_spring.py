@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from simcheck.grasp_spring import GraspSpring, cartesian_stiffness, spring_force, stable_stiffness
+from simcheck.grasp_spring import GraspSpring, cartesian_stiffness, spring_force, stable_damping, stable_stiffness
 
 
 def _spring(cap=100.0):
@@ -61,3 +61,12 @@ def test_the_stable_stiffness_is_the_effective_mass_over_twice_the_time_step_squ
     J = np.array([[0.0], [0.5], [0.0]])
     assert np.isclose(stable_stiffness(J, np.array([[0.5]]), 0.01), 2.0 / 2e-4)
     assert stable_stiffness(np.zeros((3, 1)), np.array([[0.5]]), 0.01) == np.inf
+
+
+def test_the_stable_damping_is_the_effective_mass_over_the_time_step_and_caps_the_damper():
+    J = np.array([[0.0], [0.5], [0.0]])                      # effective mass 2 kg (as above)
+    assert np.isclose(stable_damping(J, np.array([[0.5]]), 0.01), 200.0)
+    assert stable_damping(np.zeros((3, 1)), np.array([[0.5]]), 0.01) == np.inf
+    s = GraspSpring(body=1, index=0, p_local=np.zeros(3), stiffness=0.0, damping=50.0, cap=1e6, max_damping=20.0)
+    f, _ = spring_force(s, np.zeros(3), np.zeros(3), np.zeros(3), np.array([1.0, 0, 0]))
+    assert np.allclose(f, [20.0, 0, 0])

@@ -101,6 +101,18 @@ def test_a_light_third_party_door_is_certified_on_its_own_urdf(name, source, joi
     assert t.amount < 0
 
 
+@pytest.mark.parametrize("name, source", [("libero_slide_cabinet", "libero_slide_cabinet.xml"),
+                                          ("libero_window", "libero_window.xml")])
+def test_a_front_sliding_across_itself_is_grasped_on_its_face_and_certified(name, source, tmp_path):
+    """A sliding door and an 80 g window sash: the handle is what stands out of the face (not along the motion;
+    planners.handle.sliding_front), approached along the face's normal; the sash is light enough that the grasp
+    spring's damping is bounded by its effective mass (simcheck.grasp_spring.stable_damping)."""
+    from simcheck.certification import certify
+    built = build_mjcf_object(asset_named(name), {}, tmp_path, source=DATA / source)
+    t = certify(built.urdf, [built.fronts[0].task], images=False).tasks[0]
+    assert t.status.value == "certified", t.reason
+
+
 BAD = """<mujoco model="bad"><compiler inertiafromgeom="auto" inertiagrouprange="4 4"/>
   <worldbody><body name="carcass"><geom type="box" size="0.3 0.2 0.4" group="0"/>
     <body name="door" pos="0 -0.25 0"><joint name="hinge" type="{joint}" axis="0 0 1" range="0 1.5"/>
