@@ -22,12 +22,19 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from thirdparty.urdf_writer import Geom, JointOut, LinkOut, robot_xml
+from thirdparty.urdf_writer import Geom, JointOut, LinkOut, mass_com, robot_xml
 
 __all__ = ["FrontSpec", "ObjectSpec", "Front", "BuiltObject", "build_object"]
 
 SHELF = 0.018          # carcass panel thickness, m
 CLEAR = 0.008          # drawer box clearance in its bay, m
+#: joint friction, N*m, of a front on a vertical hinge or a slide (what the hinge or runner resists with)
+JOINT_FRICTION = 0.1
+#: a front on a horizontal hinge (dishwasher / oven door, lift-up flap) has a stay -- a friction stay, or the
+#: counterbalance springs of a dishwasher door -- that holds it at any angle: its joint friction is the front's
+#: largest weight torque (lever horizontal) times this margin (docs/decisions.md, "Third-party corpus: stays")
+STAY_MARGIN = 1.2
+G = 9.81               # m/s^2
 
 
 @dataclass(frozen=True)
@@ -196,6 +203,19 @@ def _handle_geoms(f: FrontSpec, panel, ft: float, mesh_name: str | None) -> list
     return [bar] + legs
 
 
+def stay_friction(parts: list[list[Geom]], point: np.ndarray, axis: np.ndarray) -> float:
+    """Joint friction, N*m, of a stay that holds a front of links ``parts`` (each a list of shapes, object frame)
+    on a horizontal hinge through ``point`` (3,) along ``axis`` (3,) at any angle: :data:`STAY_MARGIN` x its
+    largest weight torque (each link's mass and centre as the URDF's inertials give them)."""
+    a = np.asarray(axis, float) / np.linalg.norm(axis)
+    torque = 0.0
+    for geoms in parts:
+        m, c = mass_com(geoms)
+        d = c - point
+        torque += m * G * float(np.linalg.norm(d - (d @ a) * a))
+    return STAY_MARGIN * torque
+
+
 def build_object(spec: ObjectSpec, folder: str | Path) -> BuiltObject:
     """Write ``spec`` as ``folder/<name>/<name>.urdf`` (meshes in ``folder/<name>/meshes``); deterministic."""
     out = Path(folder) / spec.name
@@ -279,11 +299,16 @@ def build_object(spec: ObjectSpec, folder: str | Path) -> BuiltObject:
             handle_geoms = tuple(range(len(geoms), len(geoms) + len(hgeoms)))
             geoms += hgeoms
         links.append(LinkOut(link, [g.moved(T_joint_obj) for g in geoms], inertial=True))
+        friction = JOINT_FRICTION
+        if f.kind in ("door_bottom", "door_top"):
+            own = f.handle in ("bar", "knob_link")          # the handle is its own link (else in ``geoms``)
+            friction = round(stay_friction([geoms, hgeoms] if own else [geoms], lo_end, a), 2)
         axis = f.sign * (T_joint_obj[:3, :3] @ a)
         lower, upper = (0.0, rng) if f.sign > 0 else (-rng, 0.0)
         typ = "prismatic" if f.kind == "drawer" else ("continuous" if f.continuous else "revolute")
         jname = names.joint(f"{word}_{'slide' if f.kind == 'drawer' else 'hinge'}")
-        joints.append(JointOut(jname, typ, body, link, T_body_obj @ T_obj_joint, axis, lower, upper))
+        joints.append(JointOut(jname, typ, body, link, T_body_obj @ T_obj_joint, axis, lower, upper,
+                               friction=friction))
         task = f"open-{'drawer' if f.kind == 'drawer' else 'door'}:{jname}"
         fronts.append(Front(jname, task, f.kind, f.handle, f.sign, link, front_labels, handle_geoms))
         labels.update(front_labels)

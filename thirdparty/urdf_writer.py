@@ -14,7 +14,10 @@ import warnings
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-__all__ = ["Geom", "LinkOut", "JointOut", "robot_xml", "rpy_xyz"]
+__all__ = ["Geom", "LinkOut", "JointOut", "robot_xml", "rpy_xyz", "mass_com", "DENSITY"]
+
+#: density of every corpus part, kg/m^3 (wood-based board)
+DENSITY = 500.0
 
 
 def _f(x: float) -> str:
@@ -66,8 +69,16 @@ class Geom:
         return self.T[:3, 3], vol
 
 
+def mass_com(geoms: list[Geom]) -> tuple[float, np.ndarray]:
+    """(mass kg, centre of mass (3,) in the geometries' frame) of a link made of ``geoms`` at :data:`DENSITY`
+    (at least 0.2 kg)."""
+    cs, vs = zip(*(g.volume_box() for g in geoms))
+    vs = np.asarray(vs)
+    return max(0.2, DENSITY * float(vs.sum())), (np.asarray(cs) * vs[:, None]).sum(0) / vs.sum()
+
+
 class LinkOut:
-    """A link: its geometries (link frame) and whether to write an ``<inertial>`` (density 500 kg/m^3)."""
+    """A link: its geometries (link frame) and whether to write an ``<inertial>`` (density :data:`DENSITY`)."""
 
     def __init__(self, name: str, geoms: list[Geom], inertial: bool = True):
         self.name, self.geoms, self.inertial = name, geoms, inertial
@@ -75,10 +86,8 @@ class LinkOut:
     def xml(self) -> str:
         out = f'  <link name="{self.name}">\n'
         if self.inertial and self.geoms:
-            cs, vs = zip(*(g.volume_box() for g in self.geoms))
-            vs = np.asarray(vs)
-            mass = max(0.2, 500.0 * float(vs.sum()))
-            com = (np.asarray(cs) * vs[:, None]).sum(0) / vs.sum()
+            cs = [g.volume_box()[0] for g in self.geoms]
+            mass, com = mass_com(self.geoms)
             spread = np.ptp(np.asarray(cs), axis=0) + 0.1
             inertia = mass / 12.0 * (np.sum(spread ** 2) - spread ** 2)
             out += (f'    <inertial><origin xyz="{" ".join(map(_f, com))}" rpy="0 0 0"/><mass value="{_f(mass)}"/>'
