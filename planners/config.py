@@ -29,6 +29,15 @@ class PlannerConfig:
             high facing up).
         min_handle_lever: a grasp point that moves less than this per unit joint value (m/m or m/rad)
             cannot be pulled (it sits on the hinge axis).
+    Push finish (:mod:`planners.push_finish`: a door on a horizontal hinge whose grasped opening ends short)
+        push_finish: plan it at all; push_min_share: the grasped opening must reach this share of the request
+            first (the inner face must be open to the hand); push_inset: the fingertips push this far in from
+            the door's free edge, m; push_lead: m, how far ahead of the fingertips the planning checks put the
+            face (the tips on the face are not a collision); push_effort_share: a grasped opening that would
+            statically load an arm joint beyond this share of its effort limit is handed over to the push there
+            (half: the margin the certificate keeps on the gripper's hold, for what statics leaves out -- the
+            door's damping and inertia, the compliant grasp's lag); push_tilts: rad, the approach axis tilted from the
+            face's normal toward the hinge, tried in turn (the hand beyond the free edge, clear of the opening).
     Default amounts
         drawer_fraction: share of a prismatic joint's range opened by default.
         door_fraction, door_max: a door opens min(door_fraction * range, door_max) by default (85 deg: short
@@ -75,6 +84,12 @@ class PlannerConfig:
     min_retreat_distance: float = 0.04
     grasp_turn_share: float = 0.5
     min_handle_lever: float = 0.05
+    push_finish: bool = True
+    push_min_share: float = 0.3
+    push_inset: float = 0.04
+    push_lead: float = 0.005
+    push_tilts: tuple = (0.0, math.radians(30.0), math.radians(60.0))
+    push_effort_share: float = 0.5
     drawer_fraction: float = 0.9
     door_fraction: float = 0.9
     door_max: float = math.radians(85.0)

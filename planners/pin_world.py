@@ -203,6 +203,30 @@ class RobotKinematics:
         pin.updateFramePlacement(self.model, self.data, self.tool_id)
         return np.array(self.data.oMf[self.tool_id].homogeneous), np.array(J[:, self.idx_q])
 
+    def gripper_reach(self, direction=(0.0, 0.0, 1.0)) -> float:
+        """How far, m, the gripper links' collision hulls reach past the tool frame's origin along ``direction``
+        (3,) (tool frame; default its z, the approach axis), fingers as set (:meth:`set_fingers`): where the
+        fingertips touch a face whose inward normal is ``direction``. Reads the gripper's own geometry at the
+        home configuration."""
+        key = float(self.q_full[self.idx_finger].sum()) if len(self.idx_finger) else 0.0
+        cache = self.__dict__.setdefault("_gripper_points", {})
+        if key not in cache:
+            q = self.spec.home_q
+            qf = self.full_q(q)
+            pin.framesForwardKinematics(self.model, self.data, qf)
+            pin.updateGeometryPlacements(self.model, self.data, self.geom_model, self.geom_data, qf)
+            T_tool = self.tool_pose(q)
+            grip, pts = set(self.spec.gripper_links), [np.zeros((1, 3))]
+            for i, go in enumerate(self.geom_model.geometryObjects):
+                g = go.geometry
+                if self.geom_links[i] in grip and isinstance(g, coal.ConvexBase) and g.num_points:
+                    M = self.geom_data.oMg[i].homogeneous
+                    w = np.asarray(g.points())[: g.num_points] @ M[:3, :3].T + M[:3, 3]
+                    pts.append((w - T_tool[:3, 3]) @ T_tool[:3, :3])
+            cache[key] = np.concatenate(pts)
+        d = np.asarray(direction, dtype=float)
+        return float((cache[key] @ (d / np.linalg.norm(d))).max())
+
     def self_collision(self, q: np.ndarray) -> bool:
         """True when two non-adjacent, non-ignored robot links intersect at ``q``."""
         return bool(pin.computeCollisions(self.model, self.data, self.geom_model, self.geom_data,
@@ -297,6 +321,7 @@ class PlanningWorld:
         part = self._part_links(scene, task_joint)
         own = {i for i, go in enumerate(self.geom.geometryObjects) if key_of.get(go.name, ("",))[0] in part}
         self.arm_scene_pairs = []   # (non-gripper robot link, scene geometry) pairs: clearance queries
+        self._gripper_part_pairs = []    # (gripper link, geometry of the task's part): a free move to push it
         self._gripper_scene_pairs = []   # (gripper link, scene geometry off the task's part): the free approach's
         for k, cp in enumerate(self.geom.collisionPairs):
             a, b = sorted((cp.first, cp.second))
@@ -306,6 +331,8 @@ class PlanningWorld:
                     self.arm_scene_pairs.append(k)
             elif a < nr and b >= nr and b != fi and b not in own:
                 self._gripper_scene_pairs.append(k)
+            elif a < nr and b >= nr and b in own:
+                self._gripper_part_pairs.append(k)
         self._clearance = float(clearance)
         self._approach_clearance = float(clearance if approach_clearance is None else approach_clearance)
         self._allow = False
@@ -342,11 +369,14 @@ class PlanningWorld:
         else:
             q[self.task_idx:self.task_idx + 2] = (np.cos(s), np.sin(s))
 
-    def keep_gripper_clear(self, on: bool) -> None:
-        """From now on the gripper keeps the clearance from scene links other than the task's part (``on``), or
-        may touch them (the default, near the grasp)."""
+    def keep_gripper_clear(self, on: bool, part: bool = False) -> None:
+        """From now on the gripper keeps the clearance from scene links other than the task's part (``on``), and
+        with ``part`` from the task's part too (a free move to push it), or may touch them (the default, near the
+        grasp)."""
         for k in self._gripper_scene_pairs:
             self.gdata.collisionRequests[k].security_margin = self._approach_clearance if on else 0.0
+        for k in self._gripper_part_pairs:
+            self.gdata.collisionRequests[k].security_margin = self._approach_clearance if on and part else 0.0
 
     def _set_allow(self, allow: bool) -> None:
         if allow != self._allow:

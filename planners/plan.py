@@ -278,30 +278,28 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
         else:
             o = TrackResult(False, o.q, o.s, f"{o.reason}; constrained planning: {oc.reason}", o.failed_at)
     timings["open"] = time.perf_counter() - t
-    if not o.success:
-        return PlanStatus.OPENING_FAILED, f"opening motion failed at {o.s[-1] if len(o.s) else s0:.3f}: {o.reason}"
-    # Retreat: back off along the approach axis with the gripper open, at the final joint value, the whole body
-    # with the base weighted down further (it stays near where the opening left it, clear of the opened part).
-    t = time.perf_counter()
-    T_end = kin.tool_pose(o.q[-1])
-    dist = cfg.retreat_distance
-    w_back = weights.copy()
-    w_back[:3] *= _RETREAT_BASE
-    while True:
-        n = max(2, int(math.ceil(dist / 0.01)) + 1)
-        T_back = np.array([_translate_tool(T_end, -dist * u) for u in np.linspace(0, 1, n)])
-        rt = track_poses(kin, world, T_back, np.full(n, s1), o.q[-1], whole, w_back, cfg, False)
-        if rt.success or dist / 2 < cfg.min_retreat_distance - 1e-9:
-            break
-        dist /= 2
-    timings["retreat"] = time.perf_counter() - t
-    note = ""
-    if not rt.success:
-        # The opening is done once the gripper is open; a robot boxed in by the opened part and a wall stays
-        # where it released (a two-sample, zero-length retreat) rather than failing the task.
-        log.warning("%s: retreat blocked (%s); the robot stays where it released", task.joint, rt.reason)
-        note = f"; retreat blocked ({rt.reason}), the robot stays at the release pose"
-        rt = TrackResult(True, np.repeat(o.q[-1:], 2, axis=0), np.full(2, s1), "blocked", -1)
+    # A door on a horizontal hinge whose grasped opening falls short (or would load an arm joint beyond
+    # cfg.push_effort_share statically) is handed over to a push (planners.push_finish); a push that cannot be
+    # planned leaves a whole grasped opening as it is.
+    o_cut, frames, why_not = _grasped_share(kin, world, task, stand, handle, o, s0, s1, cfg)
+    if not o.success and not frames:
+        return PlanStatus.OPENING_FAILED, (f"opening motion failed at {o.s[-1] if len(o.s) else s0:.3f}: "
+                                           f"{o.reason}{why_not}")
+    tries = ([(o_cut, frames)] if frames else []) + ([(o, None)] if o.success else [])
+    for o_try, frames_try in tries:
+        s_rel = float(o_try.s[-1])    # where the fingers let go: the end of the opening, or where a push takes over
+        rt, note = _retreat(kin, world, task, o_try, s_rel, whole, weights, cfg, timings)
+        pushed = []
+        if frames_try:
+            pushed = _push_segments(kin, world, frames_try, s_rel, s1, rt.q[-1], cfg, seed, rng, timings)
+            if isinstance(pushed, tuple):
+                failed = pushed
+                continue
+            note += f"; opened by the grasp to {s_rel:.3f}, then pushed to {s1:.3f}"
+        o = o_try
+        break
+    else:
+        return failed
     # Approach: OMPL from the start configuration to the pre-grasp.
     t = time.perf_counter()
     q_start = _start_configuration(world, spec, stand, start, cfg, s0)
@@ -328,9 +326,115 @@ def _plan_from_stand(kin, world, task, stand: StandPose, T_path, s_path, handle,
         Segment("approach", qa, sa, _fk_poses(kin, qa), "open"),
         Segment("grasp", g.q, g.s, _fk_poses(kin, g.q), "open"),
         Segment("open", o.q, o.s, T_open, "closed"),
-        Segment("release", q_rel, np.full(2, s1), _fk_poses(kin, q_rel), "open"),
+        Segment("release", q_rel, np.full(2, s_rel), _fk_poses(kin, q_rel), "open"),
         Segment("retreat", rt.q, rt.s, _fk_poses(kin, rt.q), "open"),
+        *pushed,
     ], method, note
+
+
+def _retreat(kin, world, task, o: TrackResult, s_rel: float, whole, weights, cfg: PlannerConfig, timings: dict):
+    """Retreat after the release at the end of ``o`` (task joint at ``s_rel``): back off along the approach axis
+    with the gripper open, the whole body with the base weighted down further (it stays near where the opening
+    left it, clear of the opened part); ``(TrackResult, note)``."""
+    t = time.perf_counter()
+    T_end = kin.tool_pose(o.q[-1])
+    dist = cfg.retreat_distance
+    w_back = weights.copy()
+    w_back[:3] *= _RETREAT_BASE
+    while True:
+        n = max(2, int(math.ceil(dist / 0.01)) + 1)
+        T_back = np.array([_translate_tool(T_end, -dist * u) for u in np.linspace(0, 1, n)])
+        rt = track_poses(kin, world, T_back, np.full(n, s_rel), o.q[-1], whole, w_back, cfg, False)
+        if rt.success or dist / 2 < cfg.min_retreat_distance - 1e-9:
+            break
+        dist /= 2
+    timings["retreat"] = time.perf_counter() - t
+    note = ""
+    if not rt.success:
+        # The opening is done once the gripper is open; a robot boxed in by the opened part and a wall stays
+        # where it released (a two-sample, zero-length retreat) rather than failing the task.
+        log.warning("%s: retreat blocked (%s); the robot stays where it released", task.joint, rt.reason)
+        note = f"; retreat blocked ({rt.reason}), the robot stays at the release pose"
+        rt = TrackResult(True, np.repeat(o.q[-1:], 2, axis=0), np.full(2, s_rel), "blocked", -1)
+    return rt, note
+
+
+def _grasped_share(kin, world, task, stand, handle, o: TrackResult, s0: float, s1: float, cfg: PlannerConfig):
+    """Where a push takes over a grasped opening ``o`` of a door on a horizontal hinge: before the first sample at
+    which holding the door would load an arm joint beyond ``cfg.push_effort_share`` of its effort statically
+    (:func:`planners.push_finish.held_effort`), else where ``o`` failed -- at 75 % of what it reached: the arm
+    ends a tracking that fails near its joint limits or a singular posture, where it follows the handle under load
+    poorly -- when that is at least ``cfg.push_min_share`` of the request:
+    ``(o cut there, [PushFrame, ...], "")``; else ``(o, [], why not, for a failure's reason)``."""
+    from planners.push_finish import held_effort, horizontal_hinge, push_frames
+    if not cfg.push_finish or task.close or len(o.s) < 2 or not horizontal_hinge(world, task.joint, s0):
+        return o, [], ""
+    direction = 1.0 if s1 >= s0 else -1.0
+    over = np.flatnonzero(held_effort(kin, world, task.joint, o.q, o.s, direction) > cfg.push_effort_share)
+    if len(over) and over[0] >= 1:
+        reached, share = float(o.s[over[0] - 1]) - s0, 1.0
+    elif o.success:
+        return o, [], ""
+    else:
+        reached, share = float(o.s[-1]) - s0, 0.75
+    if abs(reached) < cfg.push_min_share * abs(s1 - s0):
+        return o, [], (f"; no push finish: the grasp follows only {abs(reached):.3f} of {abs(s1 - s0):.3f} "
+                       f"(a push needs {cfg.push_min_share:.0%} open first)")
+    frames = push_frames(world, task.joint, handle, stand.grasp_index, direction, cfg)
+    if not frames:
+        return o, [], "; no push finish: the door has no geometry to push but meshes"
+    keep = np.abs(o.s - s0) <= share * abs(reached) + 1e-12
+    return TrackResult(True, o.q[keep], o.s[keep], "ok", -1), frames, ""
+
+
+def _push_segments(kin, world, frames, s_rel: float, s1: float, q_from: np.ndarray, cfg: PlannerConfig, seed: int,
+                   rng, timings: dict):
+    """The ``reposition``, ``push`` and ``withdraw`` segments (:data:`planners.task.PUSH_SEGMENT_NAMES`) of a push
+    from ``s_rel`` to ``s1`` starting at ``q_from`` (the retreat's end) with the first of ``frames`` that works, or
+    ``(PlanStatus, reason)``."""
+    from planners.push_finish import plan_push
+    t = time.perf_counter()
+    j = world.scene.joints[world.task_joint]
+    limits = (j.lower, j.upper) if math.isfinite(j.lower) and math.isfinite(j.upper) else (-math.inf, math.inf)
+    for frame in frames:
+        out = plan_push(kin, world, frame, s_rel, s1, q_from, cfg, rng, limits)
+        if out[0] is not None:
+            break
+    else:
+        timings["push"] = time.perf_counter() - t
+        return PlanStatus.OPENING_FAILED, f"grasped opening to {s_rel:.3f}, then {out[1]}"
+    q_pre, line, push, _ = out
+    # the free move keeps the gripper clear of the door too (it is not grasped), unless its ends are too near
+    for part in (True, False):
+        world.keep_gripper_clear(True, part)
+        try:
+            qa, bad = _approach(world, q_from, q_pre, s_rel, cfg, seed, timings, t)
+        finally:
+            world.keep_gripper_clear(False)
+        if not isinstance(qa, tuple) and bad < 0:
+            break
+    # (an opening failure: the next stand pose is tried, as after a failed grasped opening)
+    if isinstance(qa, tuple):
+        return PlanStatus.OPENING_FAILED, f"grasped opening to {s_rel:.3f}, then the move to the door's inner " \
+                                          f"face: {qa[1]}"
+    if bad >= 0:
+        return PlanStatus.OPENING_FAILED, (f"grasped opening to {s_rel:.3f}, then the move to the door's inner face "
+                                           f"collided ({_what(world, qa[bad], s_rel)})")
+    reposition = np.concatenate([qa, line.q[1:]])
+    # withdraw: back off along the approach axis from the face, the door where the push left it
+    T_end = kin.tool_pose(push.q[-1])
+    n = max(2, int(math.ceil(cfg.retreat_distance / 0.01)) + 1)
+    T_back = np.array([_translate_tool(T_end, -cfg.retreat_distance * u) for u in np.linspace(0, 1, n)])
+    lead = float(np.clip(s1 + (cfg.push_lead / frame.lever) * np.sign(s1 - s_rel), *limits))
+    wd = track_poses(kin, world, T_back, np.full(n, lead), push.q[-1], np.ones(kin.spec.dof, bool),
+                     ik_weights(kin, cfg, cfg.base_weight), cfg, False)
+    timings["push"] = time.perf_counter() - t
+    if not wd.success:
+        return PlanStatus.OPENING_FAILED, f"grasped opening to {s_rel:.3f} and push to {s1:.3f}, then the " \
+                                          f"withdrawal failed: {wd.reason}"
+    return [Segment("reposition", reposition, np.full(len(reposition), s_rel), _fk_poses(kin, reposition), "open"),
+            Segment("push", push.q, push.s, _fk_poses(kin, push.q), "open"),
+            Segment("withdraw", wd.q, np.full(len(wd.q), s1), _fk_poses(kin, wd.q), "open")]
 
 
 def _approach(world, q_start, q_pre, s0, cfg, seed, timings, t):

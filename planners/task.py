@@ -18,11 +18,16 @@ import numpy as np
 from planners.errors import TaskJointError, TaskSpecError
 
 __all__ = ["OpenTask", "PlanStatus", "Segment", "Expectation", "GRIPPER_COMMANDS", "PlanResult", "SEGMENT_NAMES",
+           "PUSH_SEGMENT_NAMES",
            "KINDS", "parse_task", "parse_tasks", "check_task", "ALL_MOVABLE", "OPENING_KINDS", "movable_joint_tasks",
            "ACTIONS"]
 
 #: Segment names in execution order.
 SEGMENT_NAMES = ("approach", "grasp", "open", "release", "retreat")
+#: the segments a plan that finishes an opening by pushing adds after ``retreat`` (:mod:`planners.push_finish`):
+#: the free move to the door's inner face, the push (the only segment in which the hand may touch the part
+#: without a grasp) and the withdrawal, at whose end the part must be at rest
+PUSH_SEGMENT_NAMES = ("reposition", "push", "withdraw")
 
 #: task kind -> the joint type it opens (a door also opens a continuous joint)
 KINDS = {"drawer": "prismatic", "door": "revolute"}
@@ -276,7 +281,7 @@ class Segment:
     """One piece of the plan, sampled densely enough to execute by interpolation.
 
     Attributes:
-        name (str): One of :data:`SEGMENT_NAMES`.
+        name (str): One of :data:`SEGMENT_NAMES` or :data:`PUSH_SEGMENT_NAMES` (a given plan's: its own).
         q ((n, dof) float): Robot joint positions, columns in ``PlanResult.joint_names`` order (m, rad).
         object_q ((n,) float): Planned value of the task joint at each sample (m or rad).
         T_world_tool ((n, 4, 4) float): Planned tool pose; during ``open`` this is where the handle grasp frame is
@@ -381,12 +386,12 @@ class PlanResult:
     @property
     def release_segment(self) -> str:
         """The name of the segment at whose end the opened part must be at rest: ``"release"`` for a
-        planner's plan; for a given plan the first segment after :attr:`opening_segment` that opens the
+        planner's plan (``"withdraw"`` for one that finishes by pushing); for a given plan the first segment after :attr:`opening_segment` that opens the
         gripper (the opening segment itself when none does)."""
         names = [s.name for s in self.segments]
         opening = self.opening_segment
         if opening not in names or all(s.command is None for s in self.segments):
-            return "release"
+            return PUSH_SEGMENT_NAMES[2] if PUSH_SEGMENT_NAMES[1] in names else "release"
         i = names.index(opening)
         return next((s.name for s in self.segments[i + 1:] if s.command == "open"), opening)
 

@@ -209,10 +209,20 @@ def settled_angular_speed(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> C
                   f"link {r.moving_link} still turned at {w:.3f} rad/s at t={r.t[k]:.2f} s, after the gripper let go")
 
 
+def _pushing(r: Rollout) -> np.ndarray:
+    """(m,) bool: robot contacts of a gripper link with the part (moving link or handle) while the plan pushes it
+    (``r.push_segment``)."""
+    if not r.push_segment:
+        return np.zeros(len(r.contact_sample), bool)
+    return (r.in_segment(r.push_segment)[r.contact_sample] & np.isin(r.contact_robot_link, list(r.gripper_links))
+            & np.isin(r.contact_scene_link, [r.moving_link, r.handle_link]))
+
+
 def _unexpected(r: Rollout) -> np.ndarray:
-    """(m,) bool: robot contacts other than gripper links vs the grasped handle link."""
+    """(m,) bool: robot contacts other than gripper links vs the grasped handle link, and than the gripper pushing
+    the part in the push segment."""
     allowed = np.isin(r.contact_robot_link, list(r.gripper_links)) & (r.contact_scene_link == r.handle_link)
-    return ~allowed
+    return ~(allowed | _pushing(r))
 
 
 def _worst_contact(r: Rollout, values: np.ndarray, mask: np.ndarray) -> tuple[float, str]:
@@ -375,12 +385,13 @@ def robot_joint_effort(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> Crit
 def interaction_force(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
     """Largest force, N, the robot applied to the task's part other than by squeezing it between its
     fingers: per sample, the grasp's force (50 ms mean) plus the contact forces of every robot link that
-    is not a finger on the moving link or the handle. Threshold: what the gripper holds
+    is not a finger on the moving link or the handle (while the plan pushes the part, ``r.push_segment``, the
+    fingers' contacts too: they push it, nothing is squeezed). Threshold: what the gripper holds
     (``r.holding_force``): the robot's spec bounds what it applies to the object. The grasp's pull is left
     out while the part rests on its end stop, as in :func:`grasp_force`."""
     total, _ = _grasp_load(r, c)
-    on_part = np.isin(r.contact_scene_link, [r.moving_link, r.handle_link]) & ~np.isin(r.contact_robot_link,
-                                                                                          list(r.finger_links))
+    on_part = np.isin(r.contact_scene_link, [r.moving_link, r.handle_link]) & (
+        ~np.isin(r.contact_robot_link, list(r.finger_links)) | _pushing(r))
     pushed = np.zeros(r.n)
     np.add.at(pushed, r.contact_sample[on_part], r.contact_force[on_part])
     total = total + pushed

@@ -44,7 +44,7 @@ import numpy as np
 
 from planners.handle import handle_link
 from planners.scene_urdf import read_scene_urdf
-from planners.task import SEGMENT_NAMES, PlanResult, Segment
+from planners.task import PUSH_SEGMENT_NAMES, SEGMENT_NAMES, PlanResult, Segment
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
 from simcheck.grasp import grasp_formation, round_bar_axis
 from simcheck.rollout import Rollout
@@ -56,6 +56,7 @@ __all__ = ["execute_task", "handle_link_for", "moving_link_for", "timed_waypoint
 log = logging.getLogger(__name__)
 
 _, GRASP, OPEN, RELEASE, _ = SEGMENT_NAMES
+_, PUSH, _ = PUSH_SEGMENT_NAMES
 
 
 def moving_link_for(world: World, joint: str) -> str:
@@ -412,7 +413,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
             set_fingers(True, config.gripper_open_time, hold)
         if close_first and fingers_open:
             close_and_grasp(hold)
-        hold = _follow(world, rec, seg, vmax * (config.open_speed_scale if seg.name == OPEN else 1.0), config,
+        hold = _follow(world, rec, seg, vmax * (config.open_speed_scale if seg.name in (OPEN, PUSH) else 1.0), config,
                        check_slip)
         if seg.name == opening:
             snap("opened")
@@ -451,6 +452,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
         opening_axis=None if opening_axis is None else np.asarray(opening_axis, dtype=float).reshape(3),
         holding_force=float(rec.holding_force), opening_segment=opening, release_segment=plan.release_segment,
         closing=bool(closing), joint_range=float(joint_range),
+        push_segment=PUSH if any(s.name == PUSH for s in plan.segments) else "",
         object_limits=object_limits, robot_effort=np.asarray(rows["robot_effort"], dtype=float),
         finger_q=np.asarray(rows["finger_q"]).reshape(len(rows["t"]), -1),
         finger_contacts=np.asarray(rows["finger_contacts"], dtype=int),

@@ -245,20 +245,26 @@ def given_from_result(plan: PlanResult, vmax_urdf: np.ndarray, physics: PhysicsC
     (:func:`simcheck.execute.command_trajectory`; ``vmax_urdf`` (dof,) the robot's URDF velocity limits):
     replayed with :func:`certify_plan` the robot gets the same position targets at every control step.
     Gripper commands: ``grasp`` closes at its end, ``open`` holds, segments with the gripper open open it;
-    the ``open`` segment expects the task joint to move from ``start_object_q`` by ``amount``."""
+    the ``open`` segment expects the task joint to move from ``start_object_q`` by ``amount`` (in a plan finished
+    by a push, ``open`` and ``push`` each expect the move they plan)."""
     from planners.task import Expectation
     from simcheck.execute import command_trajectory, speed_limits
 
     vmax = speed_limits(vmax_urdf, physics)
     segments = []
+    pushed = any(s.name == "push" for s in plan.segments)
     for s in plan.segments:
-        t, q, tool = command_trajectory(s, vmax * (physics.open_speed_scale if s.name == "open" else 1.0), physics)
+        t, q, tool = command_trajectory(s, vmax * (physics.open_speed_scale if s.name in ("open", "push") else 1.0),
+                                        physics)
         T = np.full((len(t), 4, 4), np.nan)
         if tool is not None:
             T[:, :3, 3] = tool
         command = "close" if s.name == "grasp" else ("hold" if s.gripper == "closed" else "open")
-        expect = (Expectation(plan.task.joint, plan.start_object_q, plan.start_object_q + plan.amount)
-                  if s.name == "open" else None)
+        expect = None
+        if s.name == "open" and not pushed:
+            expect = Expectation(plan.task.joint, plan.start_object_q, plan.start_object_q + plan.amount)
+        elif s.name in ("open", "push"):     # a plan finished by a push: each moves the joint its own share
+            expect = Expectation(plan.task.joint, float(s.object_q[0]), float(s.object_q[-1]))
         segments.append(Segment(s.name, q, np.full(len(t), np.nan), T, s.gripper, t=t, command=command,
                                 expect=expect))
     return GivenPlan(robot=robot, joint_names=tuple(plan.joint_names), segments=tuple(segments),

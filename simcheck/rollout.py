@@ -24,7 +24,7 @@ ROLLOUT_FORMAT = "partscene.rollout/1"
 _META = ("joint", "moving_link", "handle_link", "robot_joint_names", "segment_names", "gripper_links",
          "requested_amount", "object_q0", "grasp_note", "time_step", "holding_force", "opening_type",
          "finger_links", "opening_segment", "release_segment", "rest_contact_links", "rest_contact_worst",
-         "robot_joint_units", "closing", "joint_range")
+         "robot_joint_units", "closing", "joint_range", "push_segment")
 
 
 @dataclass(frozen=True)
@@ -78,6 +78,10 @@ class Rollout:
         opening_segment, release_segment: the names of the segment that opens the task joint and of the
             segment at whose end the part must rest ("open" and "release" for a planner's plan; a given
             plan's own names, :attr:`planners.PlanResult.opening_segment`).
+        push_segment: the name of the segment in which the hand pushes the part without a grasp ("push" when
+            the plan has a segment of that name: a planner's plan that finishes an opening by pushing,
+            :mod:`planners.push_finish`, or a given plan's; "" when none): its gripper contacts with the part are
+            expected, and count toward the force applied to the part.
         rest_contact_links: the scene links the moving part touched at rest (their contact is not a
             collision, :attr:`simcheck.config.PhysicsConfig.rest_contact_gap`).
         rest_contact_excess: (n,) how much deeper than at rest the moving part interpenetrated any of them
@@ -146,6 +150,7 @@ class Rollout:
     joint_range: float = float("nan")
     object_limits: np.ndarray | None = None
     robot_effort: np.ndarray | None = None
+    push_segment: str = ""
 
     def __post_init__(self) -> None:
         n = len(self.t)

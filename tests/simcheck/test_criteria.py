@@ -106,6 +106,25 @@ def test_unexpected_contact_force_fails_on_a_robot_scene_contact(good):
     assert unexpected_contact_depth(bad).passed           # 2 mm is inside the penetration tolerance
 
 
+def test_a_finger_pushing_the_part_is_expected_only_in_the_push_segment(good):
+    """A plan finished by a push (planners.push_finish): the finger on the moving link is expected in the segment
+    named by ``push_segment`` and counts toward the force applied to the part; anywhere else it is a hit."""
+    k = 20                                             # samples per segment in good_rollout
+    pushing = with_(good, segment_names=("approach", "grasp", "open", "release", "push"), push_segment="push",
+                    contact_sample=np.append(good.contact_sample, 4 * k + 5),
+                    contact_robot_link=np.append(good.contact_robot_link, "finger_a"),
+                    contact_scene_link=np.append(good.contact_scene_link, "cabinet1_drawer2"),
+                    contact_force=np.append(good.contact_force, 30.0),
+                    contact_depth=np.append(good.contact_depth, 0.001))
+    assert unexpected_contact_force(pushing).passed
+    assert interaction_force(pushing).value == pytest.approx(max(30.0, float(good.grasp_force.max())))
+    in_approach = with_(pushing, contact_sample=np.append(good.contact_sample, 5))
+    not_a_push = with_(pushing, push_segment="")
+    for bad in (in_approach, not_a_push):
+        r = unexpected_contact_force(bad)
+        assert not r.passed and r.value == pytest.approx(30.0) and "finger_a hit scene link cabinet1_drawer2" in r.detail
+
+
 def test_gripper_on_a_non_handle_link_is_unexpected(good):
     bad = with_(good, contact_scene_link=np.array(["cabinet1_drawer2", "cabinet1_handle3"]))
     assert not unexpected_contact_force(bad).passed
