@@ -22,7 +22,7 @@ more than their own errors say (a second view registered a little off).
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -31,7 +31,7 @@ from recon.config import FittingConfig
 from recon.primitive import Primitive, PrimitiveKind
 from scenes.description import R_onto_up
 
-__all__ = ["FaceYaw", "face_yaws", "measured_yaw", "yaw_of", "yaw_difference", "turned_about"]
+__all__ = ["FaceYaw", "face_yaws", "measured_yaw", "yaw_of", "yaw_difference", "turned_about", "on_face_planes"]
 
 
 @dataclass(frozen=True)
@@ -42,12 +42,18 @@ class FaceYaw:
     se : rad, its standard error
     n_points : the points the plane was fitted to
     part_id : the part whose face it is
+    point : (3,) world, m: the centroid of those points (on the plane); None when not known
+    normal : (3,) world, unit: the plane's normal, pointing out of the box; None when not known
+    sigma : m, the robust spread of those points about the plane
     """
 
     yaw: float
     se: float
     n_points: int
     part_id: int = -1
+    point: np.ndarray | None = field(default=None, compare=False, repr=False)
+    normal: np.ndarray | None = field(default=None, compare=False, repr=False)
+    sigma: float = 0.0
 
 
 def yaw_of(direction: np.ndarray, up: np.ndarray) -> float:
@@ -91,7 +97,7 @@ def face_yaws(prim: Primitive, points: np.ndarray, normals: np.ndarray | None, u
         near = {s: np.abs(s * q[:, k] - h[k]) < config.seen_face_band for s in (1.0, -1.0)}
         for s in sorted(near, key=lambda s: -int((pool & near[s]).sum())):
             fitted = _plane_fit(points, pool, near[s], s * R[:, k], up, config.seen_face_band,
-                                3 * config.min_face_points)
+                                3 * config.min_face_points, config.normals_frame_cone)
             if fitted is not None:
                 out.append(dataclasses.replace(fitted[0], part_id=part_id))
                 pool = pool & ~fitted[1]
@@ -99,12 +105,13 @@ def face_yaws(prim: Primitive, points: np.ndarray, normals: np.ndarray | None, u
 
 
 def _plane_fit(points: np.ndarray, pool: np.ndarray, near: np.ndarray, n0: np.ndarray, up: np.ndarray,
-               band: float, min_points: int) -> tuple[FaceYaw, np.ndarray] | None:
+               band: float, min_points: int, max_tilt: float) -> tuple[FaceYaw, np.ndarray] | None:
     """The plane through ``points[pool & near]``, refitted on the pool's points within a band about it
     that halves from ``band`` (m) each time down to 3 robust sigma of the points about it (a band of 3
     sigma at once can lock onto a plane turned by the stray points of the first fit), then twice at
     3 sigma: (its yaw, the (n,) mask of its points); None with fewer than ``min_points`` points or a
-    plane not across ``up``."""
+    plane tilted more than ``max_tilt`` (rad) off vertical about the unit ``up`` (the points of a strip,
+    a table top's edge, fit a plane turned about its length as well as one across it)."""
     mask = pool & near
     n = n0
     sigma, at_sigma = 0.0, 0
@@ -122,15 +129,16 @@ def _plane_fit(points: np.ndarray, pool: np.ndarray, near: np.ndarray, n0: np.nd
         mask = pool & (np.abs(r) <= band)
     if mask.sum() < min_points:
         return None
-    across = np.cross(up, n)
-    if np.linalg.norm(across) < 1e-6:
+    if abs(n @ up) > np.sin(max_tilt):
         return None
+    across = np.cross(up, n)
     X = points[mask]
     u = (X - X.mean(axis=0)) @ (across / np.linalg.norm(across))
     spread = float(np.sqrt((u**2).sum()))
     if spread <= 0.0:
         return None
     yaw = yaw_of(n, up)
+    centre = X.mean(axis=0)
     # a plane's halves (either side of its middle across up) lie in it: when they do not (two strips
     # at different depths, a warped face), its yaw is no better than their disagreement
     halves = [_normal(X[side], n) for side in (u < 0, u >= 0)]
@@ -139,7 +147,7 @@ def _plane_fit(points: np.ndarray, pool: np.ndarray, near: np.ndarray, n0: np.nd
     ya, yb = (yaw_of(h, up) for h in halves)
     se = max(max(sigma, 1e-6) / spread, abs(yaw_difference(ya, yb)) / 2,
              abs(yaw_difference(yaw, ya + yaw_difference(yb, ya) / 2)))
-    return FaceYaw(yaw, se, int(mask.sum())), mask
+    return FaceYaw(yaw, se, int(mask.sum()), point=centre, normal=n, sigma=sigma), mask
 
 
 def _normal(X: np.ndarray, n0: np.ndarray) -> np.ndarray | None:
@@ -185,3 +193,54 @@ def measured_yaw(faces: list[FaceYaw], consensus: float, base: int | None = None
 def turned_about(R: np.ndarray, up: np.ndarray, angle: float) -> np.ndarray:
     """(3, 3) the frame ``R`` turned by ``angle`` (rad) about the unit ``up`` (3,)."""
     return Rotation.from_rotvec(np.asarray(up) * angle).as_matrix() @ R
+
+
+def on_face_planes(prim: Primitive, faces: list[FaceYaw], up: np.ndarray, max_turn: float, band: float,
+                   min_thickness: float, cover: np.ndarray | None = None) -> Primitive:
+    """The box ``prim`` with each face that one of ``faces`` (fitted to its own points, :func:`face_yaws`)
+    shows placed on that face's plane: along the box axis most nearly parallel to the plane's normal, on
+    the side it points to, at its points' centroid. A least-squares plane trimmed at 3 robust sigma sits
+    in the middle of its points' depth noise; the box's own ends (the min/max or percentiles of the points
+    along a frame) lie about 3 sigma out, more where the noise grows with range.
+
+    Only the faces of the box's frame count: a yaw about ``up`` (3,) within ``max_turn`` (rad) of the
+    box's (a plane whose yaw is uncertain still lies at its points: its offset is known to the noise over
+    the square root of its points). A face that other parts cover is kept: more of the ``cover`` points
+    (n, 3, world: the object's other parts) than the plane has lie inside its outline and in front of it
+    by at most twice ``band`` (m) and 3 of its sigma -- a carcass's front behind its doors and drawers
+    shows its panels' edges and what lies between the fronts, not a face. Both faces of an axis are moved
+    only when they stay ``min_thickness`` apart. Orientation kept; faces without a plane unchanged
+    (``prim`` itself when no face moved)."""
+    if prim.kind is not PrimitiveKind.BOX:
+        return prim
+    R = prim.T_world_part[:3, :3]
+    lo, hi = -prim.size / 2, prim.size / 2
+    q = np.empty((0, 3)) if cover is None or not len(cover) else (np.asarray(cover) - prim.center) @ R
+    new: list[dict[int, float]] = [{}, {}]                   # [low ends, high ends] {axis: coordinate}
+    for f in faces:
+        if f.point is None or f.normal is None:
+            continue
+        c = R.T @ f.normal
+        k = int(np.argmax(np.abs(c)))
+        if abs(yaw_difference(f.yaw, yaw_of(R[:, k], up))) > max_turn:
+            continue
+        side = 1.0 if c[k] > 0 else -1.0
+        offset = float((f.point - prim.center) @ R[:, k])
+        others = [j for j in range(3) if j != k]
+        ahead = side * (q[:, k] - offset)
+        covered = (np.all(np.abs(q[:, others]) <= prim.size[others] / 2, axis=1)
+                   & (ahead >= 0.0) & (ahead <= 2.0 * band + 3.0 * f.sigma))
+        if covered.sum() > f.n_points:
+            continue
+        new[int(side > 0)][k] = offset
+    lo, hi = lo.copy(), hi.copy()
+    moved = False
+    for k in range(3):
+        a, b = new[0].get(k, lo[k]), new[1].get(k, hi[k])
+        if (k in new[0] or k in new[1]) and b - a >= min_thickness:
+            lo[k], hi[k], moved = a, b, True
+    if not moved:
+        return prim
+    T = prim.T_world_part.copy()
+    T[:3, 3] = prim.to_world(((lo + hi) / 2)[None])[0]
+    return Primitive(PrimitiveKind.BOX, hi - lo, T)

@@ -38,6 +38,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from recon.clearance import cleared_scene
 from recon.completion import (complete_missing_legs, complete_mounted_parts, complete_reaching_parts,
@@ -46,7 +47,7 @@ from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.coverage import coverage, coverage_problems
 from recon.estimated_normals import with_estimated_normals
-from recon.fitting import FitScore, body_behind_face, fit_part, fit_part_covering
+from recon.fitting import FitScore, body_behind_face, fit_part, fit_part_covering, score_primitive
 from recon.front_split import split_fronts
 from recon.handle_shapes import HandleShapes, mounted_handle_shapes, posed_handle_shapes
 from recon.joint_uncertainty import with_joint_uncertainty
@@ -54,7 +55,7 @@ from recon.joints import estimate_joints
 from recon.leveling import Floor, find_floor
 from recon.model import ContactEdge, JointEstimate, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
 from recon.object_up import measured_up, tilt_to, turned_upright, vertical_axis
-from recon.object_yaw import face_yaws, measured_yaw, turned_about, yaw_difference, yaw_of
+from recon.object_yaw import face_yaws, measured_yaw, on_face_planes, turned_about, yaw_difference, yaw_of
 from recon.outliers import scan_without_outliers
 from recon.part_shapes import template_shapes
 from recon.part_tree import PartTree, choose_root, part_distances, part_tree
@@ -347,16 +348,19 @@ _FRAME_PART_POINTS = 16
 
 
 def _base_along_measured_frame(obj: ObjectPoints, base: PartPoints, fitted: dict[int, tuple], run: _Run):
-    """The base part refitted as a box, without ICP, along the up direction the normals of its object's
-    points show (:func:`recon.object_up.measured_up`) and the yaw the planes of its object's large parts'
-    vertical faces show (:func:`recon.object_yaw.measured_yaw`), when its fitted box is tilted off that up
-    by more than ``base_tilt_tolerance`` (and less than ``max_upright_tilt``, beyond which a tilt is
-    taken as intended) or turned off that yaw by more than ``base_yaw_tolerance`` and 2 standard errors
-    of the measured yaw. ``fitted`` {part_id: (name, primitive, score, table)} holds the base and the
-    object's other large parts. Returns (name, primitive, score, table) as :func:`recon.fitting.fit_part`
-    does, or None to keep the fit."""
+    """The base part's box along the up direction the normals of its object's points show
+    (:func:`recon.object_up.measured_up`) and the yaw the planes of its object's large parts' vertical faces
+    show (:func:`recon.object_yaw.measured_yaw`), its vertical faces on the planes its own points show
+    (:func:`recon.object_yaw.on_face_planes`).
+
+    A box tilted off that up by more than ``base_tilt_tolerance`` (and less than ``max_upright_tilt``,
+    beyond which a tilt is taken as intended) is refitted as a box, without ICP, along the up and yaw; a
+    box only turned off that yaw by more than ``base_yaw_tolerance`` and 2 standard errors of the measured
+    yaw is turned about its centre (its extents are what Eq. 3 fitted). ``fitted`` {part_id: (name,
+    primitive, score, table)} holds the base and the object's other large parts. Returns (name, primitive,
+    score, table) as :func:`recon.fitting.fit_part` does, or None to keep the fit."""
     config = run.config.fitting
-    prim = fitted[base.part_id][1]
+    name, prim, score, table = fitted[base.part_id]
     if prim.kind is not PrimitiveKind.BOX:
         return None
     # every part of 3+ points has normals here: the scan's, else estimated (with_estimated_normals)
@@ -378,13 +382,28 @@ def _base_along_measured_frame(obj: ObjectPoints, base: PartPoints, fitted: dict
         turn = yaw_difference(yaw[0], yaw_of(across, up))
         if abs(turn) <= max(config.base_yaw_tolerance, 2.0 * yaw[1]):
             turn = 0.0
-    if tilt <= config.base_tilt_tolerance and turn == 0.0:
+    if tilt > config.base_tilt_tolerance:
+        log.info("object %d part %d (%s): fitted %.2f deg off the up direction and %.2f deg off the yaw of its "
+                 "object's faces; refitted along them", obj.id, base.part_id, base.label, np.degrees(tilt),
+                 np.degrees(-turn))
+        name, prim, score, table = fit_part(base.points, replace(config, candidates=("box",)),
+                                            seed=_part_seed(run.seed, base.part_id), normals=base.normals,
+                                            R_world_ref=turned_about(R_up, up, turn), align=False)
+    elif turn != 0.0:
+        log.info("object %d part %d (%s): fitted %.2f deg off the yaw of its object's faces; turned onto it",
+                 obj.id, base.part_id, base.label, np.degrees(-turn))
+        T = prim.T_world_part.copy()
+        T[:3, :3] = turned_about(R_up, up, turn)
+        prim = Primitive(PrimitiveKind.BOX, prim.size, T)
+    # a plane does not depend on the frame its points were picked along (a turn of a degree or two)
+    others = [p.points for p in obj.parts if p.part_id != base.part_id]
+    placed = on_face_planes(prim, [f for f in faces if f.part_id == base.part_id], up, config.yaw_consensus,
+                            config.seen_face_band, config.min_thickness,
+                            np.concatenate(others) if others else None)
+    if placed is fitted[base.part_id][1]:
         return None
-    log.info("object %d part %d (%s): fitted %.2f deg off the up direction and %.2f deg off the yaw of its "
-             "object's faces; refitted along them", obj.id, base.part_id, base.label, np.degrees(tilt),
-             np.degrees(-turn))
-    return fit_part(base.points, replace(config, candidates=("box",)), seed=_part_seed(run.seed, base.part_id),
-                    normals=base.normals, R_world_ref=turned_about(R_up, up, turn), align=False)
+    rng = np.random.default_rng(_part_seed(run.seed, base.part_id))
+    return name, placed, score_primitive(placed, base.points, cKDTree(base.points), config, rng), table
 
 
 def complete_parts(state: ObjectState, run: _Run) -> None:
