@@ -52,6 +52,13 @@ class ScanConfig:
     outlier_std_ratio: float = 3.0
     """... a point is an outlier when its mean neighbour distance exceeds the cloud's mean by this
     many standard deviations."""
+    fragment_link_spacings: float = 4.0
+    """A handle's (knob's) points closer than this many times its object's point spacing (median
+    nearest-neighbour distance) are linked; its largest linked cluster is the handle (label_fragments.py)
+    ..."""
+    fragment_min_share: float = 0.34
+    """... and so is any other cluster of at least this share of its points; smaller ones are a
+    segmentation's label fragments and leave the part."""
     normal_neighbours: int = 48
     """A scan without normals: each part's normals are its local planes through this many of its
     nearest points, oriented away from its object's centre (estimated_normals.py)."""
@@ -201,7 +208,16 @@ class CoverageConfig:
     """Whether each fitted shape covers its points (coverage.py); a part outside a bound is warned about."""
 
     coverage_near_distance: float = 0.02
-    """A point is covered when it lies inside the part's primitive or within this (m) of its surface."""
+    """A point is covered when it lies inside the part's primitive or within this (m) of its surface, or
+    within ``coverage_noise_sigmas`` times its part's depth noise when that is more."""
+    coverage_noise_sigmas: float = 2.0
+    """A noisier scan's points are covered within this many standard deviations of its part's depth noise:
+    their robust spread across the face of their own oriented box that most of their normals show
+    (recon.depth_noise), not across the fitted shape, which must not widen its own tolerance."""
+    coverage_noise_min_points: int = 30
+    """A part's depth noise is measured from this many points up (fewer: ``coverage_near_distance`` alone)."""
+    coverage_noise_face_points: int = 12
+    """The opposite face of a part's points' box joins the noise measure from this many points up."""
     coverage_min_extent: float = 0.02
     """The points' oriented box is at least this (m) along each axis (a face seen alone has no depth)."""
     max_mean_surface_distance: float = 0.05

@@ -24,6 +24,7 @@ from scipy.spatial.transform import Rotation
 from recon.bounding import oriented_box
 from recon.config import CoverageConfig, FittingConfig
 from recon.coverage import coverage, coverage_problems
+from recon.depth_noise import mad_sigma, seen_face
 from recon.primitive import Primitive, PrimitiveKind
 
 __all__ = ["FitScore", "candidate_primitives", "normals_frame", "score_primitive", "denoised_box", "dominant_yaw", "fit_part",
@@ -211,11 +212,6 @@ def score_primitive(prim: Primitive, points: np.ndarray, tree: cKDTree, config: 
                     tuple(int(f) for f in observed))
 
 
-def _mad_sigma(r: np.ndarray) -> float:
-    """Robust standard deviation (1.4826 × median absolute deviation) of (n,) values; 0 if empty."""
-    return 1.4826 * float(np.median(np.abs(r - np.median(r)))) if len(r) else 0.0
-
-
 def denoised_box(prim: Primitive, points: np.ndarray, config: FittingConfig,
                  normals: np.ndarray | None = None) -> Primitive:
     """The box with its extents corrected for depth noise (see :func:`_denoised`)."""
@@ -255,24 +251,9 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
     if prim.kind is not PrimitiveKind.BOX:
         return prim, False
     q = prim.to_part(points)
-    h = prim.size / 2.0
-    d = np.abs(np.abs(q) - h)
-    nearest = np.argmin(d, axis=1)
-    face = nearest * 2 + (q[np.arange(len(q)), nearest] > 0)
-    counts = np.bincount(face, minlength=6)
-    f = int(np.argmax(counts))
-    k = f // 2
-    r = q[face == f, k]
-    sigma = _mad_sigma(r)
-    other = q[face == (f ^ 1), k]
-    seen_mask = face == f
-    if len(other) >= max(config.min_face_points, len(r) // 5):
-        gap = abs(float(np.median(r) - np.median(other)))
-        if gap <= 6.0 * max(sigma, _mad_sigma(other)):
-            # one noisy slab split between the two faces of an inflated box: judge it as one cloud
-            r = np.concatenate([r, other])
-            sigma = _mad_sigma(r)
-            seen_mask = seen_mask | (face == (f ^ 1))
+    # the face the camera saw best and the depth noise across it (both halves of an inflated slab)
+    best = seen_face(q, prim.size, config.min_face_points)
+    f, k, sigma, r, seen_mask = best.face, best.axis, best.sigma, best.across, best.mask
     if sigma < config.noise_floor:
         # a clean scan: nothing to correct, but a front seen only by its face is a board, not a film; a
         # panel already a board's thickness (within the noise floor) is such a front too, so a second pass
@@ -483,7 +464,7 @@ def _slab_box(prim: Primitive, q: np.ndarray, k: int, plus: bool, config: Fittin
     band, lo, hi = interior_of(q)
     interior = q[~band, k]
     seen = float(np.median(interior))
-    sigma = _mad_sigma(interior)
+    sigma = mad_sigma(interior)
     inward = -1.0 if plus else 1.0
     depth = (q[:, k] - seen) * inward
     cut = max(2.5 * sigma, config.slab_min_cut)
@@ -645,8 +626,8 @@ def fit_part_covering(points: np.ndarray, config: FittingConfig, coverage_config
     ``points`` (n, 3) world; the other arguments as for :func:`fit_part`."""
     def attempt(cfg):
         name, prim, score, table = fit_part(points, cfg, seed=seed, normals=normals, R_world_ref=R_world_ref)
-        return name, prim, score, table, tuple(coverage_problems(coverage(prim, prim, points, coverage_config),
-                                                                 coverage_config))
+        cov = coverage(prim, prim, points, coverage_config, normals)
+        return name, prim, score, table, tuple(coverage_problems(cov, coverage_config))
 
     best = current = attempt(config)
     refused: list[str] = []

@@ -470,10 +470,11 @@ def check_coverage(state: ObjectState, run: _Run) -> None:
     """Every part's final primitive against its points (coverage.py), before the scene stages move
     the object; a part outside the bounds is reported by name."""
     cfg = run.config.coverage
+    normals = {p.part_id: p.normals for p in state.source.parts}
     for i, prim in state.prims.items():
         if i not in state.fits or len(state.points.get(i, ())) < 3:
             continue
-        cov = coverage(prim, state.fits[i].primitive, state.points[i], cfg)
+        cov = coverage(prim, state.fits[i].primitive, state.points[i], cfg, normals.get(i))
         log.debug("%s part %d: coverage %s", state.name, i, cov)
         problems = coverage_problems(cov, cfg)
         if problems:
