@@ -6,6 +6,7 @@ Stages, in order (each a function below; per-object state travels in an :class:`
                        z-up or not in metres refused; the scan moved into the floor frame (floor z = 0,
                        z up) for every stage below (leveling.py, frame_checks.py)
     remove_outliers    statistical outliers dropped part by part (outliers.py)
+    remove_label_fragments  a handle's points apart from its largest cluster dropped (label_fragments.py)
     split_labelled_fronts  a drawer/door part showing horizontal gaps split, one part per front (front_split.py)
     fit_primitives     Eq. 3: the best primitive per part, the base part first; a fit that does not cover
                        its points is refitted with the other kinds (fitting.py, coverage.py); a base box
@@ -52,6 +53,7 @@ from recon.front_split import split_fronts
 from recon.handle_shapes import HandleShapes, mounted_handle_shapes, posed_handle_shapes
 from recon.joint_uncertainty import with_joint_uncertainty
 from recon.joints import estimate_joints
+from recon.label_fragments import without_label_fragments
 from recon.leveling import Floor, find_floor
 from recon.model import ContactEdge, JointEstimate, ObjectReconstruction, PartFit, Reconstruction, SceneGraph
 from recon.object_up import measured_up, tilt_to, turned_upright, vertical_axis
@@ -163,6 +165,7 @@ def reconstruct_scan(scan: Scan, *, config: ReconConfig = ReconConfig(), level_f
     run.timings["floor"] = time.perf_counter() - t_start
     t0 = time.perf_counter()
     scan = remove_outliers(scan, run)
+    scan = remove_label_fragments(scan, run)
     run.timings["outliers"] = time.perf_counter() - t0
     scan = with_estimated_normals(scan, run.config.scan.normal_neighbours)
     scan = split_labelled_fronts(scan, run)
@@ -270,6 +273,15 @@ def remove_outliers(scan: Scan, run: _Run) -> Scan:
                                           std_ratio=run.config.scan.outlier_std_ratio)
     if removed:
         log.info("removed %d outlier points (flying pixels)", removed)
+    return scan
+
+
+def remove_label_fragments(scan: Scan, run: _Run) -> Scan:
+    """Every handle/knob part reduced to its cluster: the points a segmentation labelled handle apart
+    from the handle are dropped from it (label_fragments.py)."""
+    scan, removed = without_label_fragments(scan, run.config.scan)
+    if removed:
+        log.info("removed %d handle points lying apart from their handles (label fragments)", removed)
     return scan
 
 
