@@ -52,10 +52,10 @@ class ScanConfig:
     outlier_std_ratio: float = 3.0
     """... a point is an outlier when its mean neighbour distance exceeds the cloud's mean by this
     many standard deviations."""
-    fragment_link_spacings: float = 4.0
-    """A handle's (knob's) points closer than this many times its object's point spacing (median
-    nearest-neighbour distance) are linked; its largest linked cluster is the handle (label_fragments.py)
-    ..."""
+    fragment_link_spacings: float = 8.0
+    """A handle's (knob's) points closer than this many times the point spacing (median nearest-neighbour
+    distance) of its object, or of its own points when sparser, are linked; its largest linked cluster is
+    the handle (label_fragments.py) ..."""
     fragment_min_share: float = 0.34
     """... and so is any other cluster of at least this share of its points; smaller ones are a
     segmentation's label fragments and leave the part."""

@@ -3,9 +3,9 @@
 A segmentation network labels small blobs of one part with another part's label (a few points of a door
 labelled "handle" half a metre from the handle). A handle or knob has a few dozen points at most, so two
 such points pull its fitted bar across the front and its hinge side with it. The points of a handle part
-are linked when closer than ``fragment_link_spacings`` times its object's point spacing (the median
-distance from each of the object's points to its nearest neighbour: the scan's density, whatever the
-scanner); the largest linked cluster is the handle, and so is any other cluster holding at least
+are linked when closer than ``fragment_link_spacings`` times the point spacing (the median distance from
+each point to its nearest neighbour: the scan's density, whatever the scanner) of its object or, when
+sparser, of the handle's own points (a handle seen by a few points); the largest linked cluster is the handle, and so is any other cluster holding at least
 ``fragment_min_share`` of its points (a bar seen in two pieces). The other clusters are fragments: they
 leave the handle part (they stay in the scan, as obstacles).
 """
@@ -23,7 +23,7 @@ from scipy.spatial import cKDTree
 from recon.config import ScanConfig
 from recon.scan import Scan
 
-__all__ = ["FRAGMENT_LABELS", "object_spacing", "handle_cluster", "without_label_fragments"]
+__all__ = ["FRAGMENT_LABELS", "point_spacing", "handle_cluster", "without_label_fragments"]
 
 log = logging.getLogger(__name__)
 
@@ -31,7 +31,7 @@ FRAGMENT_LABELS = frozenset({"handle", "knob"})
 """Labels of the parts that are one small piece: their points are stripped of label fragments."""
 
 
-def object_spacing(points: np.ndarray) -> float:
+def point_spacing(points: np.ndarray) -> float:
     """The median distance (m) from each of ``points`` (n, 3) to its nearest other point; 0 below 2 points."""
     if len(points) < 2:
         return 0.0
@@ -64,9 +64,10 @@ def without_label_fragments(scan: Scan, config: ScanConfig) -> tuple[Scan, int]:
         if not handles:
             objects.append(o)
             continue
-        link = config.fragment_link_spacings * object_spacing(np.concatenate([p.points for p in o.parts]))
+        spacing = point_spacing(np.concatenate([p.points for p in o.parts]))
         parts = []
         for p in o.parts:
+            link = config.fragment_link_spacings * max(spacing, point_spacing(p.points))
             keep = handle_cluster(p.points, link, config.fragment_min_share) if p.part_id in handles else None
             if keep is None or keep.all():
                 parts.append(p)

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from recon.config import ScanConfig
-from recon.label_fragments import handle_cluster, object_spacing, without_label_fragments
+from recon.label_fragments import handle_cluster, point_spacing, without_label_fragments
 from recon.scan import ObjectPoints, PartPoints, Scan
 
 
@@ -39,7 +39,7 @@ def test_the_scan_stage_reduces_handles_only_and_links_by_the_objects_spacing():
     scan = Scan(pts, np.ones(len(pts), np.int64), np.repeat([2, 3], [len(parts[0].points), 17]), None, None,
                 (ObjectPoints(1, "cabinet", parts),), (), "test")
     out, removed = without_label_fragments(scan, ScanConfig())
-    assert removed == 2 and 0.01 < object_spacing(pts) < 0.03
+    assert removed == 2 and 0.01 < point_spacing(pts) < 0.03
     door_out, handle_out = out.objects[0].parts
     assert door_out is parts[0] and len(handle_out.points) == 15 and len(handle_out.normals) == 15
     assert np.array_equal(out.points, scan.points)           # the scan's arrays keep every point
