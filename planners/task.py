@@ -386,14 +386,15 @@ class PlanResult:
     @property
     def release_segment(self) -> str:
         """The name of the segment at whose end the opened part must be at rest: ``"release"`` for a
-        planner's plan (``"withdraw"`` for one that finishes by pushing); for a given plan the first segment after :attr:`opening_segment` that opens the
-        gripper (the opening segment itself when none does)."""
+        planner's plan (``"withdraw"`` for one that finishes by pushing); for a given plan the first segment that
+        opens the gripper after the last segment whose expectation names the task joint (that segment itself when
+        none does)."""
         names = [s.name for s in self.segments]
-        opening = self.opening_segment
-        if opening not in names or all(s.command is None for s in self.segments):
+        if self.opening_segment not in names or all(s.command is None for s in self.segments):
             return PUSH_SEGMENT_NAMES[2] if PUSH_SEGMENT_NAMES[1] in names else "release"
-        i = names.index(opening)
-        return next((s.name for s in self.segments[i + 1:] if s.command == "open"), opening)
+        i = max((k for k, s in enumerate(self.segments) if s.expect is not None and s.expect.joint == self.task.joint),
+                default=names.index(self.opening_segment))
+        return next((s.name for s in self.segments[i + 1:] if s.command == "open"), self.segments[i].name)
 
     def segment(self, name: str) -> Segment:
         """The segment called ``name`` (KeyError if absent)."""

@@ -15,8 +15,11 @@ tasks are, each part starting where the robot is.
 
 The binding of a plan to the robot and the scene (:func:`bind_plan`) refuses with exit 2, naming the field: a
 joint the robot lacks or a robot joint the plan lacks, an expectation naming no movable scene joint, a plan
-without expectation, two expectations of one joint (the certificate has one task per joint) or two without a
-segment opening the gripper between them, and in a scenario a first waypoint away from where the robot is.
+without expectation, expectations of one joint with another joint's between them (the certificate has one task
+per joint) or two without a segment opening the gripper between them, and in a scenario a first waypoint away
+from where the robot is. Consecutive expectations of one joint are one task moved in parts (a grasped pull, the
+gripper let go, then a push: :mod:`planners.push_finish`): each part's expectation is met by the end of its
+segment and the task asks for the whole move, from the first part's ``from`` to the last one's ``to``.
 """
 
 from __future__ import annotations
@@ -65,12 +68,14 @@ def _check_robot_joints(given: GivenPlan, robot) -> tuple[str, ...]:
     if not given.expectations:
         raise PlanFileError(f"plan {src}: no segment has an 'expect': nothing to certify (say which joint a "
                             "segment should move, e.g. {\"joint\": J, \"from\": 0.0, \"to\": 0.3})")
-    joints = [e.joint for _, e in given.expectations]
-    twice = next((j for j in joints if joints.count(j) > 1), None)
+    runs = [e.joint for k, (_, e) in enumerate(given.expectations)
+            if k == 0 or given.expectations[k - 1][1].joint != e.joint]
+    twice = next((j for j in runs if runs.count(j) > 1), None)
     if twice is not None:
         where = ", ".join(f"segments[{i}]" for i, e in given.expectations if e.joint == twice)
-        raise PlanFileError(f"plan {src}: {where} each expect scene joint {twice!r}: the certificate has one task "
-                            "per joint (give one plan per move of a joint and chain them in a scenario)")
+        raise PlanFileError(f"plan {src}: {where} expect scene joint {twice!r} with another joint's move between "
+                            "them: the certificate has one task per joint (move a joint in consecutive parts, or "
+                            "give one plan per move and chain them in a scenario)")
     expectation_zones(given)
     return robot_names
 
@@ -128,18 +133,29 @@ def bind_plan(given: GivenPlan, robot, scene_joints: dict, scene) -> list[PlanRe
         given_tool = np.isfinite(s.T_world_tool[:, :3, 3]).all(axis=1)
         T[given_tool, :3, 3] = s.T_world_tool[given_tool, :3, 3]
         segments.append(dataclasses.replace(s, q=q, T_world_tool=T))
+    parts: list[list] = []                 # consecutive expectations of one joint: one task
+    for (i, e), zone in zip(given.expectations, expectation_zones(given)):
+        if parts and parts[-1][-1][1].joint == e.joint:
+            parts[-1].append((i, e, zone))
+        else:
+            parts.append([(i, e, zone)])
     plans = []
-    for (i, e), (a, b) in zip(given.expectations, expectation_zones(given)):
-        segs = []
-        moved = followed_values(segments[i].T_world_tool[:, :3, 3], scene_joints[e.joint], e)
-        for k in range(a, b + 1):
+    for part in parts:
+        first, last = part[0][1], part[-1][1]
+        moved = {i: followed_values(segments[i].T_world_tool[:, :3, 3], scene_joints[e.joint], e) for i, e, _ in part}
+        value, segs = first.start, []
+        for k in range(part[0][2][0], part[-1][2][1] + 1):
             s = segments[k]
-            obj = moved if k == i else np.full(len(s.t), moved[-1] if k > i else e.start)
+            obj = moved[k] if k in moved else np.full(len(s.t), value)
+            value = float(obj[-1])
             segs.append(dataclasses.replace(s, object_q=obj))
-        kind = OPENING_KINDS[str(getattr(scene_joints[e.joint].type, "value", scene_joints[e.joint].type))]
-        task = OpenTask(kind, e.joint, e.amount)
-        plans.append(PlanResult(PlanStatus.OK, f"given plan {src}, segment {given.segments[i].name!r}", task,
-                                robot_names, tuple(segs), amount=e.amount, start_object_q=e.start, method="given"))
+        amount = last.end - first.start
+        kind = OPENING_KINDS[str(getattr(scene_joints[first.joint].type, "value", scene_joints[first.joint].type))]
+        task = OpenTask(kind, first.joint, amount)
+        names = ", ".join(repr(given.segments[i].name) for i, _, _ in part)
+        plans.append(PlanResult(PlanStatus.OK, f"given plan {src}, segment{'s' if len(part) > 1 else ''} {names}",
+                                task, robot_names, tuple(segs), amount=amount, start_object_q=first.start,
+                                method="given"))
     return plans
 
 

@@ -84,9 +84,15 @@ def test_binding_names_a_joint_the_robot_lacks_or_the_plan_lacks():
     with pytest.raises(PlanFileError, match=r"no segment between segments\[0\] \('approach'\) and segments\[1\] "
                                             r"\('open'\), which both have an 'expect', opens the gripper"):
         bind_plan(plan_from_dict(doc, "doc"), robot, {}, "scene.urdf")
-    doc["segments"][0]["expect"]["joint"] = "cabinet1_drawer2_joint"
-    with pytest.raises(PlanFileError, match=r"segments\[0\], segments\[1\] each expect scene joint "
-                                            r"'cabinet1_drawer2_joint': the certificate has one task per joint"):
+    doc["segments"][0]["expect"]["joint"] = "cabinet1_drawer2_joint"      # one joint moved in two parts: one task,
+    with pytest.raises(PlanFileError, match=r"no segment between segments\[0\] .* opens the gripper"):  # let go between
+        bind_plan(plan_from_dict(doc, "doc"), robot, {}, "scene.urdf")
+    a, b = doc["segments"]                                # drawer, door, drawer again: two tasks of one joint
+    doc["segments"] = [dict(a, gripper="hold", expect={"joint": "cabinet1_drawer2_joint", "from": 0.0, "to": 0.3}),
+                       dict(b, gripper="open", expect={"joint": "cabinet1_door4_joint", "from": 0.0, "to": 1.0}),
+                       dict(b, name="again", expect={"joint": "cabinet1_drawer2_joint", "from": 0.3, "to": 0.4})]
+    with pytest.raises(PlanFileError, match=r"segments\[0\], segments\[2\] expect scene joint "
+                                            r"'cabinet1_drawer2_joint' with another joint's move between them"):
         bind_plan(plan_from_dict(doc, "doc"), robot, {}, "scene.urdf")
     with pytest.raises(PlanFileError, match=r"'segments\[1\].expect.joint': scene joint 'cabinet1_drawer2_joint' of "
                                             r"scene.urdf does not exist"):

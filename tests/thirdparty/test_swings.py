@@ -53,3 +53,19 @@ def test_a_flap_with_its_stay_is_certified_and_without_one_falls_shut(swings, tm
     fraction = next(c for c in t.criteria if c.name == "opened_fraction")
     assert t.status.value == "failed" and not fraction.passed, t.reason
     assert "moved back by itself once released" in fraction.detail
+
+
+def test_a_plan_finished_by_a_push_is_saved_and_replayed_as_one_task(swings, tmp_path):
+    """--save-plan writes the pull and the push as two consecutive expectations of the door's joint; certify-plan
+    replays them as one task (the whole swing), judged as the planned one was."""
+    from simcheck import certify_plan
+
+    o = swings["dishwasher"]
+    planned = certify(o.urdf, [o.fronts[0].task], images=False, out=tmp_path / "c", save_plan=True).tasks[0]
+    assert planned.status.value == "certified", planned.reason
+    plan_file = next((tmp_path / "c" / "plans").glob("*.plan.json"))
+    replay = certify_plan(o.urdf, plan_file, images=False, out=tmp_path / "r")
+    assert [t.joint for t in replay.tasks] == [planned.joint]
+    t = replay.tasks[0]
+    assert t.status.value == "certified", t.reason
+    assert t.amount == pytest.approx(planned.amount, abs=1e-6)
