@@ -10,6 +10,7 @@ software versions and timings. Written as ``certificate.json`` (atomically) and 
      "timings": {"total": s},
      "untested": {joint: "why it was not tested"},     (movable joints left out of an --all-movable run)
      "files": {"scene": {"path": "...", "sha256": "..."}, "against": ..., "robot": ..., "robot_spec" | "scenario" | "plan": ...},
+     "robot_joint_stiffness": {robot joint: N*m/rad or N/m, null: held rigidly},   (the arm's simulated joint impedance)
      "tasks": [{"kind": "open-drawer", "joint": "...", "status": "certified" | "failed" | "not_planned" | "unreachable" | ...,
                 "reason": "...", "amount": 0.31, "unit": "m", "seed": 0, "rollout": "rollouts/<joint>.npz",
                 "plan_status": "OK" | "NO_STAND_POSE" | ..., "start_state": {joint: value},
@@ -155,6 +156,10 @@ class Certificate:
     #: "scenario", ...): ``{"path": as given (relative to the certificate's folder if inside it),
     #: "sha256": hex digest of the content}``
     files: dict = field(default_factory=dict)
+    #: the arm's joint impedance the run simulated, N*m/rad (N/m for a prismatic joint; None: held rigidly), by
+    #: robot joint: robots that share one URDF (``--robot default`` and ``compliant``) differ here; empty: no joint
+    #: stiffness given (an isotropic grasp spring, ``PhysicsConfig.grasp_stiffness``)
+    robot_joint_stiffness: dict = field(default_factory=dict)
     path: Path | None = None
 
     @property
@@ -194,6 +199,7 @@ class Certificate:
                 "robot": self.robot, "criteria": dict(self.criteria), "seeds": dict(self.seeds),
                 "versions": dict(self.versions), "timings": dict(self.timings),
                 "untested": dict(self.untested), "files": {k: dict(v) for k, v in self.files.items()},
+                "robot_joint_stiffness": dict(self.robot_joint_stiffness),
                 "tasks": [t.to_dict() for t in self.tasks]}
 
     @classmethod
@@ -205,7 +211,8 @@ class Certificate:
                    against=d.get("against"), robot=d.get("robot", ""), criteria=dict(d.get("criteria", {})),
                    seeds=dict(d.get("seeds", {})), versions=dict(d.get("versions", {})),
                    timings=dict(d.get("timings", {})), untested=dict(d.get("untested", {})),
-                   files=dict(d.get("files", {})), path=path)
+                   files=dict(d.get("files", {})), robot_joint_stiffness=dict(d.get("robot_joint_stiffness", {})),
+                   path=path)
 
     def write(self, out_dir: str | Path) -> Path:
         """Write ``certificate.json`` into ``out_dir`` atomically; returns its path."""

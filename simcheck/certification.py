@@ -15,6 +15,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import logging
+import math
 import time
 from pathlib import Path
 from typing import Callable
@@ -447,7 +448,9 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
                               robot=str(sim_robot.urdf), criteria=criteria.to_dict(), seeds={"seed": seed},
                               versions=software_versions(), timings={"total": time.perf_counter() - t0},
                               files=certified_files({"scene": scene, "against": against, "robot": sim_robot.urdf,
-                                                     **(files or {})}, out_dir))
+                                                     **(files or {})}, out_dir),
+                              robot_joint_stiffness={n: float(k) if math.isfinite(k) else None
+                                                     for n, k in sim_robot.joint_stiffness})
     if out_dir is not None:
         path = certificate.write(out_dir)
         certificate = Certificate(**{**certificate.__dict__, "path": path})

@@ -67,15 +67,31 @@ def test_unusable_input_exits_2_and_says_why(argv, message, tmp_path, capsys, mo
     assert message in capsys.readouterr().err
 
 
-def test_unreachable_object_exits_1_and_says_unreachable(tmp_path, capsys):
+def _out_of_reach(tmp_path):
+    """The fixture cabinet lifted 2.6 m: no stand pose reaches its drawer (planning fails fast, nothing runs)."""
     high = tmp_path / "high.urdf"
     high.write_text(CAB.read_text().replace('<origin xyz="1.5 0 0" rpy="0 0 3.141593"/>',
                                             '<origin xyz="1.5 0 2.6" rpy="0 0 3.141593"/>'))
+    return high
+
+
+def test_unreachable_object_exits_1_and_says_unreachable(tmp_path, capsys):
+    high = _out_of_reach(tmp_path)
     assert main(["certify", str(high), "--task", f"open-drawer:{DRAWER}", "--out", str(tmp_path / "o"), "--no-images"]) == 1
     out = capsys.readouterr().out
     assert "unreachable" in out and DRAWER in out
     doc = json.loads((tmp_path / "o" / "certificate.json").read_text())
     assert doc["tasks"][0]["status"] == "unreachable" and doc["tasks"][0]["plan_status"] == "NO_STAND_POSE"
+    assert doc["robot_joint_stiffness"]["panda_joint6"] == 2000.0 and doc["robot_joint_stiffness"]["torso_lift"] is None
+
+
+def test_the_certificate_records_the_arm_stiffness_it_simulated(tmp_path):
+    """--robot default and compliant share one URDF: the certificate tells them apart by the joint impedance."""
+    high = _out_of_reach(tmp_path)
+    assert main(["certify", str(high), "--task", f"open-drawer:{DRAWER}", "--out", str(tmp_path / "o"), "--no-images",
+                 "--robot", "compliant"]) == 1
+    doc = json.loads((tmp_path / "o" / "certificate.json").read_text(), parse_constant=pytest.fail)
+    assert doc["robot_joint_stiffness"]["panda_joint6"] == 150.0
 
 
 def test_certified_drawer_exits_0_and_writes_the_certificate(tmp_path, capsys):
