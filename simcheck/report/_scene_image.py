@@ -34,7 +34,7 @@ def draw_solids(ax, solids: Sequence[Solid], bounds: np.ndarray | None = None,
         rgb = np.concatenate(colours)
         # edges in the face colour hide the hairline seams antialiasing leaves between facets
         coll = Poly3DCollection(polys, facecolors=rgb, edgecolors=rgb, linewidths=0.3)
-        ax.add_collection3d(coll)
+        ax.add_collection3d(coll, autolim=False)      # the view box is set below, not autoscaled
     set_view(ax, scene_bounds(solids) if bounds is None else bounds, azim_deg)
 
 
