@@ -68,8 +68,8 @@ def _smallest_effective_mass(J: np.ndarray, M: np.ndarray) -> float:
 def stable_damping(J: np.ndarray, M: np.ndarray, time_step: float) -> float:
     """Largest damping, N*s/m, of a damper integrated explicitly once per ``time_step`` s on the point of
     :func:`stable_stiffness`: its smallest effective mass over the time step (one step then takes away at most
-    the relative velocity, never reverses it; above twice that it diverges: an 80 g window sash under the
-    50 N*s/m grasp at 1/160 s). ``inf`` when the point cannot move."""
+    the relative velocity, never reverses it; above twice that it diverges; docs/decisions.md has the part
+    that needed it). ``inf`` when the point cannot move."""
     return _smallest_effective_mass(J, M) / time_step
 
 
