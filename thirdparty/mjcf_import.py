@@ -215,7 +215,9 @@ def import_mjcf(xml, out, name: str, *, elevation: float = 0.0, counter: bool = 
     standing at the origin (module docstring). ``elevation``: height (m) of the object's lowest collision
     point; with ``counter`` it stands on a counter of that height (default ``COUNTER_HEIGHT`` when
     ``elevation`` is 0). ``visuals`` False writes no visual geometry (smaller files; the collisions are
-    what partscene uses). Deterministic."""
+    what partscene uses). ``scale`` > 0 (module docstring). Deterministic."""
+    if not (np.isfinite(scale) and scale > 0):
+        raise MjcfImportError(f"{xml}: scale {scale!r} is not a positive number (1.0 keeps the file's size)")
     mujoco = _mujoco()
     m, repairs = load_mjcf(xml)
     d = mujoco.MjData(m)

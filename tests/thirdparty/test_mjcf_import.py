@@ -132,3 +132,29 @@ def test_a_simulators_own_element_is_left_out_and_said(tmp_path):
     imp = import_mjcf(f, tmp_path / "out", "region")
     assert any("['region']" in r for r in imp.repairs) and any("inertia" in r for r in imp.repairs)
     assert imp.joints == {"hinge": ("door", "door")}
+
+
+SLIDE = BAD.replace('type="{joint}" axis="0 0 1" range="0 1.5"', 'type="slide" axis="0 -1 0" range="0 0.3"')
+
+
+def test_a_tabletop_asset_scaled_keeps_its_shape_and_density(tmp_path):
+    """``scale=s``: lengths (shapes, joint origins, a slide's travel) x s, masses x s^3, inertias x s^5; a
+    hinge's range (an angle) and the joint's damping and friction as given."""
+    f = tmp_path / "slide.xml"
+    f.write_text(SLIDE.format(extra=""))
+    one, two = (read_urdf(import_mjcf(f, tmp_path / f"s{s}", "drawer", scale=s).urdf) for s in (1.0, 2.0))
+    assert np.allclose(two.links["door"].collisions[0].size, 2 * one.links["door"].collisions[0].size)
+    assert np.isclose(two.links["door"].inertial.mass, 8 * one.links["door"].inertial.mass)
+    assert np.allclose(two.links["door"].inertial.inertia, 32 * one.links["door"].inertial.inertia)
+    assert np.isclose(two.joints["hinge"].upper, 2 * one.joints["hinge"].upper)
+    f.write_text(BAD.format(joint="hinge", extra=""))
+    h1, h2 = (read_urdf(import_mjcf(f, tmp_path / f"h{s}", "door", scale=s).urdf).joints["hinge"] for s in (1.0, 2.0))
+    assert (h2.lower, h2.upper) == (h1.lower, h1.upper) == (0.0, pytest.approx(np.radians(1.5)))  # MJCF: degrees
+
+
+@pytest.mark.parametrize("scale", [0.0, -1.0, float("nan")])
+def test_a_scale_that_is_not_a_positive_number_is_refused(scale, tmp_path):
+    f = tmp_path / "door.xml"
+    f.write_text(BAD.format(joint="hinge", extra=""))
+    with pytest.raises(MjcfImportError, match="scale"):
+        import_mjcf(f, tmp_path / "out", "door", scale=scale)
