@@ -8,6 +8,10 @@ holding at most ``front_split_density`` × the median count of the occupied bins
 gap. The part is cut at the middle of each gap; the lowest piece keeps the part id, the others get new
 ids above every id in the scan, with the same label. Each split is reported by a warning naming the
 object, the part and the new ids.
+
+A sparse scan may show no gap (a rail narrower than the point spacing). A drawer part without gaps
+whose handles stand at several heights is then cut between them (:func:`handle_levels`): a drawer is
+pulled by one handle or by handles side by side, so pulls stacked one above another mark one front each.
 """
 
 from __future__ import annotations
@@ -19,7 +23,7 @@ import numpy as np
 from recon.config import ScanConfig
 from recon.scan import PartPoints, Scan
 
-__all__ = ["FRONT_LABELS", "horizontal_gaps", "split_fronts"]
+__all__ = ["FRONT_LABELS", "horizontal_gaps", "handle_levels", "split_fronts"]
 
 FRONT_LABELS = frozenset({"drawer", "door"})
 """Labels of the parts that are checked for several fronts under one label."""
@@ -54,9 +58,43 @@ def horizontal_gaps(z: np.ndarray, config: ScanConfig) -> list[float]:
     return gaps
 
 
+HANDLE_LABELS = frozenset({"handle", "knob"})
+
+
+def handle_levels(front: PartPoints, parts: tuple[PartPoints, ...], config: ScanConfig) -> list[float]:
+    """Cut heights (m, lowest first) between the levels of the handles standing on ``front``.
+
+    A handle/knob of ``parts`` (one object's parts) stands on the front part nearest its centre; handle
+    centres less than ``front_split_min_height`` apart in height are one level. The front is cut midway
+    between consecutive levels at least 2 x ``front_split_min_height`` apart, where that leaves at least
+    ``front_split_min_height`` of it above and below; empty when its handles stand at one level.
+    """
+    from scipy.spatial import cKDTree
+
+    fronts = [p for p in parts if p.label in FRONT_LABELS and len(p.points)]
+    trees = [cKDTree(p.points) for p in fronts]
+    zs = sorted(float(c[2]) for c in (h.points.mean(axis=0) for h in parts
+                                      if h.label in HANDLE_LABELS and len(h.points))
+                if fronts[int(np.argmin([t.query(c)[0] for t in trees]))] is front)
+    levels: list[list[float]] = []
+    for z in zs:
+        if levels and z - levels[-1][-1] < config.front_split_min_height:
+            levels[-1].append(z)
+        else:
+            levels.append([z])
+    if len(levels) < 2:
+        return []
+    mids = [float(np.mean(v)) for v in levels]
+    lo, hi = float(front.points[:, 2].min()), float(front.points[:, 2].max())
+    h = config.front_split_min_height
+    cuts = [(a + b) / 2 for a, b in zip(mids, mids[1:]) if b - a >= 2 * h]
+    return [c for c in cuts if c - lo >= h and hi - c >= h]
+
+
 def split_fronts(scan: Scan, config: ScanConfig) -> tuple[Scan, list[str]]:
-    """(the scan with every drawer/door part that shows horizontal gaps split into one part per front,
-    the warnings naming each split). Parts of other labels and fronts without gaps are unchanged."""
+    """(the scan with every drawer/door part that shows horizontal gaps -- or, a drawer, handles stacked
+    at several heights -- split into one part per front, the warnings naming each split). Parts of other
+    labels and single fronts are unchanged."""
     next_id = int(max(scan.part_id.max(initial=-1), max((p.part_id for o in scan.objects for p in o.parts),
                                                         default=-1))) + 1
     part_id = scan.part_id.copy()
@@ -65,6 +103,9 @@ def split_fronts(scan: Scan, config: ScanConfig) -> tuple[Scan, list[str]]:
         parts = []
         for p in obj.parts:
             gaps = horizontal_gaps(p.points[:, 2], config) if p.label in FRONT_LABELS else []
+            cue = "separated by horizontal gaps"
+            if not gaps and p.label == "drawer":
+                gaps, cue = handle_levels(p, obj.parts, config), "with handles stacked one above another, cut"
             if not gaps:
                 parts.append(p)
                 continue
@@ -78,7 +119,7 @@ def split_fronts(scan: Scan, config: ScanConfig) -> tuple[Scan, list[str]]:
             in_scan = np.flatnonzero(scan.part_id == p.part_id)
             part_id[in_scan] = np.asarray(ids)[np.searchsorted(np.asarray(gaps), scan.points[in_scan, 2])]
             warnings.append(f"object {obj.id} ({obj.category}) part {p.part_id} ({p.label}): its points show "
-                            f"{len(ids)} fronts separated by horizontal gaps at z = "
+                            f"{len(ids)} fronts {cue} at z = "
                             f"{', '.join(f'{g:.3f}' for g in gaps)} m; split into parts "
                             f"{', '.join(map(str, ids))}, each a {p.label} (check the labels)")
         objects.append(replace(obj, parts=tuple(parts)))

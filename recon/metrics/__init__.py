@@ -6,7 +6,8 @@ Geometry (both in the true object's *unit box*, :mod:`recon.metrics.unit_box`):
 Kinematic structure:
     contact_edge_ap  average precision of estimated contact edges (ranked by Eq. 1 score) against the
                      true undirected contact edges; mean_average_precision = the per-category mAP
-Joints (matched by child part id):
+Joints (matched by child part id; a part recon split off a labelled part takes the id of the true part
+holding its centre, split_parts.py):
     compare_joints   type, sign-aware axis angle (deg) and unsigned, hinge-line distance near the part (m),
                      limit errors
 Scene:

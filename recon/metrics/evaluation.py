@@ -20,6 +20,7 @@ from recon.metrics.chamfer import DEFAULT_CHAMFER_SAMPLES, object_chamfer
 from recon.metrics.joint_errors import JointComparison, compare_joints
 from recon.metrics.kinematic_ap import contact_edge_ap
 from recon.metrics.objects import ObjectEstimate
+from recon.metrics.split_parts import renamed_estimate, true_ids_of_new_parts
 from recon.metrics.truth import TruthObject, TruthScene
 from recon.metrics.unit_box import unit_box_from_truth
 from recon.metrics.voxel_iou import DEFAULT_VOXEL_RESOLUTION, object_iou
@@ -91,12 +92,17 @@ class SceneMetrics:
 
 def evaluate_object(truth: TruthObject, estimate: ObjectEstimate, config: MetricsConfig = MetricsConfig(),
                     index: int = 0) -> ObjectMetrics:
-    """All metrics of one object (``index`` offsets the sampling seed so objects get different samples)."""
+    """All metrics of one object (``index`` offsets the sampling seed so objects get different samples).
+    Parts the estimate created by splitting a labelled part are scored as the true parts they are
+    (:mod:`recon.metrics.split_parts`)."""
+    estimate = renamed_estimate(estimate, true_ids_of_new_parts(truth, estimate))
     box = unit_box_from_truth(truth.primitives, truth.T_world_object)
     seed = config.seed + 2 * index
     chamfer = object_chamfer(truth.primitives, estimate.primitives, box, config.chamfer_samples, seed)
     iou = object_iou(truth.primitives, estimate.primitives, box, config.voxel_resolution)
-    ap = contact_edge_ap(truth.contacts, estimate.contact_scores, part_ids=[p.id for p in truth.parts],
+    # the estimate's own parts are known too: an edge of a split part the truth lacks is simply not true
+    ap = contact_edge_ap(truth.contacts, estimate.contact_scores,
+                         part_ids={p.id for p in truth.parts} | set(estimate.part_ids),
                          where=f"object {truth.id} ({truth.name})")
     centres = {p.id: p.centre for p in truth.parts}
     joints = compare_joints(truth.joints, estimate.joints, centres)

@@ -54,3 +54,34 @@ def test_one_label_over_four_drawer_fronts_gives_four_drawers(synth):
 
 def test_a_single_front_is_not_split(kitchen_rec):
     assert not [w for w in kitchen_rec.warnings if "horizontal gaps" in w]
+
+
+def _chest_without_gaps(synth, handle_levels):
+    """The chest with its fronts touching (no rail shows between them) and handles centred at ``handle_levels``
+    (z, m), side by side when two share a level."""
+    box = synth.box
+    body = [box([0.0, -0.4, 0.0], [0.48, 0.4, 0.8])]
+    front = [box([0.48, -0.375, 0.02], [0.5, 0.375, 0.78])]
+    ys = {z: [y for y in (-0.2, 0.2)] if handle_levels.count(z) > 1 else [0.0] for z in handle_levels}
+    handles = [(120 + k, "handle", [box([0.5, y - 0.06, z - 0.01], [0.53, y + 0.06, z + 0.01])])
+               for k, (z, y) in enumerate((z, y) for z in sorted(set(handle_levels)) for y in ys[z])]
+    return (1, "cabinet", [(101, "body", body), (102, "drawer", front), *handles])
+
+
+def test_a_drawer_label_over_fronts_without_gaps_is_cut_between_its_stacked_handles(synth):
+    levels = [(z0 + z1) / 2 for z0, z1 in FRONTS]
+    props, labels = synth.scan_arrays([_chest_without_gaps(synth, levels)], points_per_m2=4000.0)
+    rec = reconstruct_scan(scan_from_arrays(props, labels), seed=0)
+    split = [w for w in rec.warnings if "with handles stacked one above another" in w]
+    assert len(split) == 1 and "part 102 (drawer): its points show 4 fronts" in split[0]
+    drawers = sorted((p for p in rec.objects[0].parts if p.label == "drawer"), key=lambda p: p.primitive.center[2])
+    assert len(drawers) == 4
+    for d, z in zip(drawers, levels):
+        assert abs(d.primitive.center[2] - z) < 0.03
+
+
+def test_a_drawer_pulled_by_two_handles_side_by_side_is_one_drawer(synth):
+    props, labels = synth.scan_arrays([_chest_without_gaps(synth, [0.6, 0.6])], points_per_m2=4000.0)
+    rec = reconstruct_scan(scan_from_arrays(props, labels), seed=0)
+    assert not [w for w in rec.warnings if "fronts" in w]
+    assert sum(p.label == "drawer" for p in rec.objects[0].parts) == 1
