@@ -103,7 +103,8 @@ class Front:
 @dataclass(frozen=True)
 class BuiltObject:
     """The object's URDF path, its fronts, and its link labels (link -> "body" / "drawer" / "door" /
-    "handle": what a scanner needs to label parts)."""
+    "handle": what a scanner needs to label parts; "counter": a support the object stands on, which a
+    segmentation sees as an object of its own)."""
 
     spec: ObjectSpec
     urdf: Path

@@ -176,7 +176,7 @@ def build_mjcf_object(asset: MjcfAsset, roots: dict, folder, source: Path | None
     fronts, labels = _fronts(imp)
     labels[imp.body_link] = "body"
     if imp.counter_link:
-        labels[imp.counter_link] = "body"
+        labels[imp.counter_link] = "counter"
     return BuiltObject(spec, imp.urdf, tuple(fronts), labels)
 
 

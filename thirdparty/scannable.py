@@ -1,9 +1,10 @@
 """A corpus object as a :class:`scenes.model.Scene`, so the virtual scanner (:mod:`scenes.scanner`) can scan
 it with part labels (``scan_scene(scene_of(built), params)``) and ``recon`` can rebuild it.
 
-Parts: the carcass ("body": every link labelled so, e.g. the counter an imported object stands on), each
-front ("drawer" / "door") and each handle ("handle": a handle link, or the handle geometry of a front split
-off as its own part, fixed to the front). Shapes are the URDF's
+Parts: the carcass ("body": every link labelled so), each front ("drawer" / "door") and each handle
+("handle": a handle link, or the handle geometry of a front split off as its own part, fixed to the front).
+A counter the object stands on (links labelled "counter") is a second object, a cabinet of one body part
+supporting the first, as a segmentation of a real room separates them. Shapes are the URDF's
 collision shapes; a mesh is replaced by its bounding box (the scanner ray-casts primitives). Joints are
 re-expressed in the scenes convention (axis and a point on it in the object frame, closed = 0, positive
 opens): a file's negative range becomes a positive one about the reversed axis; a continuous hinge gets
@@ -81,7 +82,16 @@ def scene_of(built: BuiltObject, object_id: int = 1, name: str | None = None) ->
         joint_part[f.joint] = front
     obj = ArticulatedObject(object_id, SCANNED_CATEGORY.get(built.spec.category, "cabinet"), tuple(parts),
                             tuple(joints), ())
-    return Scene(name or built.spec.name, 0, (obj,), (), np.array([6.0, 6.0])), joint_part
+    objects = (obj,)
+    counter_links = [link for link, lab in built.labels.items() if lab == "counter"]
+    if counter_links:
+        T_c = m.T_world_link(counter_links[0])
+        top = Part(pid[0] + 1, "body", T_c,
+                   tuple(_scannable(s.moved(np.linalg.solve(T_c, m.T_world_link(link))))
+                         for link in counter_links for s in m.links[link].collisions), DENSITY)
+        counter = ArticulatedObject(object_id + 1, "cabinet", (top,), (Joint(JointType.FIXED, None, top.id),), ())
+        objects = (dataclasses.replace(obj, supported_by=counter.id), counter)
+    return Scene(name or built.spec.name, 0, objects, (), np.array([6.0, 6.0])), joint_part
 
 
 def reference_named_as_scan(built: BuiltObject, scene: Scene, joint_part: dict, out) -> tuple[Path, dict]:

@@ -47,3 +47,22 @@ def test_the_reference_renamed_as_the_scan_names_its_joints_and_moves_alike(tmp_
     for old, new in names.items():
         assert np.allclose(a.T_world_link(a.joints[old].child, {old: -0.5}),
                            b.T_world_link(b.joints[new].child, {new: -0.5}))
+
+
+def test_the_counter_an_object_stands_on_is_scanned_as_an_object_of_its_own(tmp_path):
+    """A segmentation of a real room labels the counter apart from the microwave on it: the counter is a
+    second object (one body part) supporting the first, not part of the microwave's body."""
+    pytest.importorskip("mujoco")
+    from pathlib import Path
+    from thirdparty.mjcf_assets import asset_named, build_mjcf_object
+    data = Path(__file__).parent / "data" / "mjcf" / "libero_microwave.xml"
+    o = build_mjcf_object(asset_named("libero_microwave"), {}, tmp_path, source=data)
+    scene, _ = scene_of(o)
+    micro, counter = scene.objects
+    assert micro.supported_by == counter.id and [p.label for p in counter.parts] == ["body"]
+    top = max(c[2] for s in counter.parts[0].shapes for c in (counter.parts[0].T_object_part @ np.c_[
+        s.corners(), np.ones(8)].T).T)
+    body = micro.parts[0]
+    assert min(c[2] for s in body.shapes for c in (body.T_object_part @ np.c_[s.corners(), np.ones(8)].T).T) >= top - 1e-6
+    scan = scan_scene(scene, params_for_preset("clean"), seed=0)
+    assert [o["category"] for o in scan.labels["objects"]] == ["microwave", "cabinet"]
