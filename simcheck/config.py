@@ -150,8 +150,9 @@ class CriteriaConfig:
         contact_force_tolerance: robot-scene contacts other than gripper-handle are unexpected when
             their normal force exceeds this, N (small numerical brushes are tolerated).
         contact_penetration_tolerance: ... or when their penetration is deeper than this, metres.
-        grasp_slip_tolerance: maximum slip between the tool frame and the grasped point of the handle
-            during the opening segment, metres; the grasp also must exist for the whole segment.
+        grasp_slip_tolerance: maximum slide of the grasped point on the handle in the fingers during the
+            opening segment, metres (rollouts recorded before the slide was: the distance between the tool
+            frame and the grasped point); the grasp also must exist for the whole segment.
         grasp_safety_factor: the ``grasp_force`` criterion allows at most the gripper's holding force
             divided by this (2: gripper sizing practice for a friction grip, required grip >= load x
             safety factor / (friction x contacts), so that an unknown handle finish, a worn pad or a

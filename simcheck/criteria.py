@@ -266,10 +266,13 @@ def rest_contact_penetration(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -
 
 
 def grasp_held(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionResult:
-    """Max slip, m, between the tool and the grasped point of the handle during the opening segment
-    (``inf`` if the grasp did not exist for the whole segment)."""
+    """Max slip, m, of the grasped point of the handle in the fingers during the opening segment (``inf`` if
+    the grasp did not exist for the whole segment): how far the held point slid on the handle
+    (``r.grasp_slide``); the grasp spring's stretch between the tool and the handle is the arm's compliance
+    under load, judged by ``handle_path_deviation`` and the force criteria. Rollouts recorded without
+    ``grasp_slide`` are judged by the distance between the tool and the grasped point."""
     mask = r.in_segment(r.opening_segment)
-    desc = "max slip between the tool and the grasped handle point while opening (inf: grasp not held)"
+    desc = "max slide of the grasped handle point in the fingers while opening (inf: grasp not held)"
     note = f" ({r.grasp_note})" if r.grasp_note else ""
     if not mask.any():
         return _judge("grasp_held", math.inf, c.grasp_slip_tolerance, "<=", "m", desc,
@@ -278,7 +281,8 @@ def grasp_held(r: Rollout, c: CriteriaConfig = DEFAULT_CRITERIA) -> CriterionRes
     if not active.any():
         return _judge("grasp_held", math.inf, c.grasp_slip_tolerance, "<=", "m", desc,
                       f"the gripper never held handle {r.handle_link} during segment {r.opening_segment!r}{note}")
-    slip = np.linalg.norm(r.grasp_point[mask] - r.tool_pos[mask], axis=1)
+    slide = np.asarray(r.grasp_slide, dtype=float)[mask]
+    slip = slide if np.isfinite(slide).all() else np.linalg.norm(r.grasp_point[mask] - r.tool_pos[mask], axis=1)
     if not active.all():
         t_lost = r.t[mask][int(np.argmin(active))]
         return _judge("grasp_held", math.inf, c.grasp_slip_tolerance, "<=", "m", desc,

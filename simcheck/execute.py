@@ -278,6 +278,7 @@ class _Recorder:
         r["T_world_handle"].append(T_handle)
         r["tool_pos"].append(w.robot_link_position(w.robot_spec.tool_link))
         r["grasp_point"].append(self.grasp_point(T_handle))
+        r["grasp_slide"].append(w.grasp_slide())
         r["grasp_turn"].append(self.turn(T_handle))
         r["planned_tool_pos"].append(np.array(self.planned_tool, dtype=float))
         r["planned_object_q"].append(self.planned_object_q)
@@ -454,6 +455,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
         closing=bool(closing), joint_range=float(joint_range),
         push_segment=PUSH if any(s.name == PUSH for s in plan.segments) else "",
         object_limits=object_limits, robot_effort=np.asarray(rows["robot_effort"], dtype=float),
+        grasp_slide=np.asarray(rows["grasp_slide"], dtype=float),
         finger_q=np.asarray(rows["finger_q"]).reshape(len(rows["t"]), -1),
         finger_contacts=np.asarray(rows["finger_contacts"], dtype=int),
         contact_sample=np.asarray([c[0] for c in cr], dtype=int),

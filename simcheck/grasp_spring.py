@@ -31,6 +31,7 @@ class GraspSpring:
         N*s/m; cap : the largest force the grasp transmits, N
     max_stiffness : stiffness eigenvalues above this, N/m, are lowered to it (``inf``: none)
     max_damping : damping above this, N*s/m, is lowered to it (``inf``: none)
+    p_local0 : (3,) the held point in the link's frame when the grasp was made, m (default: ``p_local``)
     force : the norm of the force holding the point took in the last step, before the cap, N
     slid : the force has reached the cap since the grasp was made
     """
@@ -43,8 +44,18 @@ class GraspSpring:
     cap: float
     max_stiffness: float = float("inf")
     max_damping: float = float("inf")
+    p_local0: np.ndarray | None = None
     force: float = 0.0
     slid: bool = False
+
+    def __post_init__(self) -> None:
+        if self.p_local0 is None:
+            self.p_local0 = np.array(self.p_local, dtype=float)
+
+    @property
+    def slide(self) -> float:
+        """How far, m, the held point has slid on the link since the grasp was made (above the cap)."""
+        return float(np.linalg.norm(np.asarray(self.p_local, dtype=float) - self.p_local0))
 
 
 def cartesian_stiffness(J: np.ndarray, joint_stiffness: np.ndarray) -> np.ndarray:

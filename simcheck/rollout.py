@@ -95,6 +95,9 @@ class Rollout:
             limit: the largest running mean over ``PhysicsConfig.grasp_force_window`` since the previous
             sample (1: the motor held at its limit, where the simulated joint stops following its target;
             NaN in rollouts recorded before it existed).
+        grasp_slide: (n,) how far the held point has slid on the handle since the grasp was made, m (NaN when
+            not attached, and in rollouts recorded before it existed): slip in the fingers, not the grasp
+            spring's stretch (the arm's compliance).
     """
 
     joint: str
@@ -151,6 +154,7 @@ class Rollout:
     object_limits: np.ndarray | None = None
     robot_effort: np.ndarray | None = None
     push_segment: str = ""
+    grasp_slide: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         n = len(self.t)
@@ -165,10 +169,12 @@ class Rollout:
             object.__setattr__(self, "object_limits", np.full(2, np.nan))
         if self.robot_effort is None:                              # rollouts recorded before it existed
             object.__setattr__(self, "robot_effort", np.full(np.shape(self.robot_q), np.nan))
+        if self.grasp_slide is None:
+            object.__setattr__(self, "grasp_slide", np.full(n, np.nan))
         for name in ("segment", "robot_q", "object_q", "object_qd", "T_world_handle", "tool_pos", "grasp_point",
                      "planned_tool_pos", "planned_object_q", "link_speed", "link_angular_speed", "grasp_active",
                      "grasp_force", "grasp_turn", "robot_q_target", "finger_q", "finger_contacts",
-                     "rest_contact_excess", "robot_effort"):
+                     "rest_contact_excess", "robot_effort", "grasp_slide"):
             if len(getattr(self, name)) != n:
                 raise RolloutFormatError(f"rollout of joint {self.joint!r}: {name} has {len(getattr(self, name))} "
                                          f"samples, t has {n}")

@@ -474,6 +474,12 @@ class World:
         the cap at the gripper's holding force (what was transmitted is at most the cap; 0 when detached)."""
         return 0.0 if self._grasp is None else float(self._grasp.force)
 
+    def grasp_slide(self) -> float:
+        """How far, m, the held point has slid on the held link since the grasp was made: the handle sliding
+        in the fingers when the grasp had to transmit more than the cap (NaN when detached). Not the
+        spring's stretch between the tool and the held point: that is the arm's compliance under load."""
+        return float("nan") if self._grasp is None else self._grasp.slide
+
     @property
     def grasp_slid(self) -> bool:
         """The grasp has reached its force cap (the handle slid in the fingers) since it was made."""
