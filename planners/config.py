@@ -57,7 +57,8 @@ class PlannerConfig:
         clearance: distance (m) robot links other than the gripper keep from the scene and the floor.
         approach_clearance: distance (m) the gripper keeps from every scene link but the task's part on the
             free approach to the pre-grasp and at the pre-grasp (near the grasp it may come as close as the
-            grasp needs).
+            grasp needs); 0.03: about 2 sigma of the robot's own base position error (1.4 cm per horizontal
+            axis, ``simcheck.robust_spreads``), which the free approach is executed with (docs/decisions.md).
     IK
         ik_pos_tol, ik_rot_tol: convergence (m, rad); ik_restarts: random restarts per pose;
         base_weight: relative motion weight of base joints during whole-body tracking (< 1 favours the arm).
@@ -103,7 +104,7 @@ class PlannerConfig:
     stand_path_samples: int = 6
     start_backoff: float = 0.35
     clearance: float = 0.01
-    approach_clearance: float = 0.01
+    approach_clearance: float = 0.03
     ik_pos_tol: float = 1e-3
     ik_rot_tol: float = 1e-2
     ik_restarts: int = 4
