@@ -373,6 +373,26 @@ class JointConfig:
     the parts' own surface with a neighbour's label (label bleed) or depth noise."""
     obstacle_spacing: float = 0.02
     """Other objects' primitives are sampled about this densely (m) as obstacles of the sweeps."""
+    hinge_edge_band: float = 0.02
+    """Points within this (m) of a door's hinge edge, across it, show where the door meets its carcass
+    (hinge_depth.py): the carcass's side face behind an overlay door, its front face beside an inset one."""
+    hinge_edge_trim: float = 0.03
+    """... leaving out this much (m) at each end of the hinge edge (the carcass's top and bottom panels)."""
+    hinge_edge_min_points: int = 10
+    """... and only when at least this many of the door's and of the carcass's points are there."""
+    door_max_thickness: float = 0.1
+    """The thickest door (m) looked for behind a front face (a refrigerator's door with its liner)."""
+    hinge_depth_tolerance: float = 0.015
+    """A door measured thicker than the front's board by at most this (m) keeps the board's back face: the
+    measurement's own spread (18 mm doors of realistic scans measured 13-28 mm: label bleed, grazing noise)."""
+    hinge_depth_noise_sigmas: float = 1.0
+    """... or by at most this many times the depth noise of the door's face points (their robust spread
+    across it, recon/depth_noise.py): on ScanNet-style scans (2-6 cm) 18 mm doors measured up to 49 mm, each
+    less than a sigma over the board; realistic 5-6 cm doors measured 53-62 mm with a 2.1 cm sigma."""
+    hinge_side_margin: float = 0.03
+    """A door without a handle is hinged at the edge nearer its body's edge; when the two edges' distances
+    to the body's edges differ by less than this (m, about what a scan's edges are off by) the side is
+    undecided and a warning says so."""
 
 
 @dataclass(frozen=True)

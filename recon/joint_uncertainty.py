@@ -12,7 +12,10 @@ reference; the spreads are RMS deviations from it:
 
     axis_deg  RMS angle (deg) between a replicate's axis and the reference axis
     origin_m  RMS distance (m) of a replicate's axis point from the reference axis line, perpendicular
-              to the axis
+              to the axis (the replicates hinge a door on its box's back face), combined in quadrature
+              with what the scan leaves undecided across a door thicker than a front's board: its pivot
+              may lie anywhere over that thickness (:mod:`recon.hinge_depth`; RMS of a uniform spread,
+              undecided / sqrt(3))
     upper     RMS deviation of the upper limit (m or rad), combined in quadrature with the template's
               prior on what the scan cannot show: a drawer's travel (its box is hidden:
               ``drawer_travel_prior``) and the stop of a door whose swing no obstacle limits
@@ -34,7 +37,7 @@ import numpy as np
 
 from recon.config import FittingConfig, ReconConfig
 from recon.fitting import denoised_box, dominant_yaw
-from recon.joints import movable_joint
+from recon.joints import movable_joint_detail, seen_points
 from recon.model import JointEstimate, JointType, JointUncertainty
 from recon.primitive import Primitive, PrimitiveKind
 
@@ -42,7 +45,8 @@ __all__ = ["METHOD", "with_joint_uncertainty", "joint_uncertainty"]
 
 METHOD = "bootstrap+template-prior"
 """The ``method`` recorded in graph.json: the bootstrap, plus the template's prior on what no scan shows
-(a drawer's hidden travel, a free door's stop) in the upper limit's spread."""
+(a drawer's hidden travel, a free door's stop) in the upper limit's spread and a thick door's undecided
+pivot depth in the origin's."""
 
 
 @dataclass(frozen=True)
@@ -83,9 +87,12 @@ def with_joint_uncertainty(joints: tuple[JointEstimate, ...], parts, prims: dict
                    if k in by_id and by_id[k].label in ("handle", "knob")]
         others = [prims[k] for k in sub if k != j.child_part_id]
         p, c = by_id[j.parent_part_id], by_id[j.child_part_id]
+        seen = seen_points({k: (q.points, q.normals) for k, q in by_id.items()}, j.parent_part_id,
+                           j.child_part_id, sub)
         u = joint_uncertainty(j.type, _PartData(prims[j.parent_part_id], p.points, p.normals),
                               _PartData(prims[j.child_part_id], c.points, c.normals), handles, others,
-                              obstacles_for(sub), config, seed=(int(seed) * 7919 + j.child_part_id) % 2**31)
+                              obstacles_for(sub), config, seed=(int(seed) * 7919 + j.child_part_id) % 2**31,
+                              seen=seen)
         out.append(replace(j, uncertainty=u))
     return tuple(out)
 
@@ -100,12 +107,13 @@ def _subtree(children: dict[int, list[int]], root: int) -> list[int]:
 
 
 def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, handles: list[Primitive],
-                      others: list[Primitive], obstacles: np.ndarray, config: ReconConfig, seed: int
-                      ) -> JointUncertainty:
+                      others: list[Primitive], obstacles: np.ndarray, config: ReconConfig, seed: int,
+                      seen=None) -> JointUncertainty:
     """The bootstrap spreads of one movable joint (see the module docstring).
 
     handles : the child's handle primitives (they decide the hinge side); others : the rest of the
-    child's subtree, swept with it; obstacles : (n, 3) world points for the limit sweep.
+    child's subtree, swept with it; obstacles : (n, 3) world points for the limit sweep; seen : the
+    :class:`recon.hinge_depth.SeenPoints` of a door (how much of its thickness leaves the pivot undecided).
     """
     ucfg = config.joint_uncertainty
     rng = np.random.default_rng(seed)
@@ -130,7 +138,22 @@ def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, han
         prior = ucfg.drawer_travel_prior
     else:
         prior = ucfg.door_stop_prior if ref[2] >= config.joints.door_max_angle - 1e-9 else 0.0
-    return JointUncertainty(rms(ang), rms(off), float(np.hypot(upper, prior)), int(ucfg.samples), METHOD)
+    # a thick door's pivot lies anywhere across the thickness the scan leaves undecided (uniform over it,
+    # the estimate at its back end: RMS undecided / sqrt(3))
+    undecided = _undecided_depth(jtype, parent, child, handles, config, seen) if jtype is JointType.REVOLUTE else 0.0
+    return JointUncertainty(rms(ang), float(np.hypot(rms(off), undecided / np.sqrt(3.0))),
+                            float(np.hypot(upper, prior)), int(ucfg.samples), METHOD)
+
+
+def _undecided_depth(jtype: JointType, parent: _PartData, child: _PartData, handles: list[Primitive],
+                     config: ReconConfig, seen) -> float:
+    """The span (m) across a door's thickness where its pivot may lie, from all of the parts' points
+    (:func:`recon.hinge_depth.hinge_depth`; 0 without ``seen``)."""
+    if seen is None:
+        return 0.0
+    line = movable_joint_detail(jtype, parent.prim, child.prim, handles, [child.prim], None, config.joints,
+                                config.contacts, config.fitting, seen=seen)[3]
+    return 0.0 if line is None else float(line.depth.undecided)
 
 
 def _capped(part: _PartData, n: int, rng: np.random.Generator) -> _PartData:
@@ -153,14 +176,15 @@ def _near(points: np.ndarray, prims: list[Primitive], margin: float) -> np.ndarr
 
 
 def _replicate(jtype, par: _PartData, chi: _PartData, ip, ic, handles, others, obstacles,
-               config: ReconConfig, sweep: bool) -> tuple[np.ndarray, np.ndarray, float]:
-    """(axis, origin, upper) re-estimated from the points indexed by ``ip`` / ``ic`` (None = all);
-    upper is NaN unless ``sweep`` (the limit's collision sweep is the costly part)."""
+               config: ReconConfig, sweep: bool):
+    """(axis, origin, upper) re-estimated from the points indexed by ``ip`` / ``ic`` (None = all); upper is
+    NaN unless ``sweep`` (the limit's collision sweep is the costly part). A door's hinge is on its box's
+    back face here: the depth across a thick door is not resampled (:func:`_undecided_depth`)."""
     p_box = _refit(par, ip, config.fitting)
     c_box = _refit(chi, ic, config.fitting)
-    axis, origin, upper = movable_joint(jtype, p_box, c_box, handles, [c_box, *others],
-                                        obstacles if sweep else None, config.joints, config.contacts,
-                                        config.fitting)
+    axis, origin, upper, _ = movable_joint_detail(jtype, p_box, c_box, handles, [c_box, *others],
+                                                  obstacles if sweep else None, config.joints, config.contacts,
+                                                  config.fitting)
     R = _plane_tilt(chi, ic, config.fitting)
     return R @ axis, origin, float(upper)
 

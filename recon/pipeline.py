@@ -550,7 +550,8 @@ def estimate_object_joints(state: ObjectState, obstacles: _Obstacles, supported_
     config, labels, prims, tree = run.config, state.labels, state.prims, state.tree
     names = {i: joint_name(state.category, state.id, labels[i], i) for i in labels}
     joints = estimate_joints(state.category, names, labels, prims, tree, obstacles.for_object(state.id),
-                             config.joints, config.contacts, config.fitting, run.warn)
+                             config.joints, config.contacts, config.fitting, run.warn,
+                             {p.part_id: (p.points, p.normals) for p in state.source.parts})
     joints = with_joint_uncertainty(joints, state.source.parts, prims, obstacles.for_object(state.id), config, run.seed)
     shapes = (template_shapes(joints, prims, labels, config.shapes, config.joints.drawer_back_clearance)
               if config.shapes.template_shapes else {})

@@ -1,0 +1,102 @@
+"""Where a thick door's hinge lies across it (recon/hinge_depth.py), on scans of a cabinet built from boxes.
+
+A 5 cm door (a microwave's, a safe's), hinged at its outer edge, either standing in front of its carcass
+(overlay: it pivots anywhere across its thickness; the estimate takes its back face, on the carcass's front,
+and the joint's uncertainty covers the rest) or closing inside the carcass's opening (inset: it can only
+pivot at its front face). Before, both got the 18 mm board's back face: 32 mm and 18 mm off.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import recon
+from recon.config import JointConfig
+from recon.hinge_depth import SeenPoints, hinge_depth
+from scenes.description import JointType, Shape, ShapeKind
+from scenes.model import ArticulatedObject, Joint, Part, Scene
+from scenes.scan_io import write_scan
+from scenes.scanner import scan_scene
+from scenes.scanner.params import params_for_preset
+
+X0, X1, Y, H, W, T = 1.2, 1.7, 0.25, 0.7, 0.018, 0.05      # carcass front/back x, half width, height, wall, door
+
+
+def _box(lo, hi) -> Shape:
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    M = np.eye(4)
+    M[:3, 3] = (lo + hi) / 2
+    return Shape(ShapeKind.BOX, hi - lo, M)
+
+
+def _cabinet(kind: str) -> tuple[Scene, np.ndarray]:
+    """(scene, true hinge point) of a cabinet whose front faces -x with a 5 cm door hinged at +y: "overlay",
+    "inset", or "overlay_no_handle"."""
+    shell = (_box([X0, -Y, 0], [X1, -Y + W, H]), _box([X0, Y - W, 0], [X1, Y, H]), _box([X0, -Y + W, 0], [X1, Y - W, W]),
+             _box([X0, -Y + W, H - W], [X1, Y - W, H]), _box([X1 - W, -Y + W, W], [X1, Y - W, H - W]))
+    if kind == "inset":
+        g = 0.002
+        door = _box([X0, -Y + W + g, W + g], [X0 + T, Y - W - g, H - W - g])
+        hinge, free = np.array([X0, Y - W - g, 0.0]), -Y + W + g + 0.05
+    else:
+        door = _box([X0 - T, -Y, 0.0], [X0, Y, H])
+        hinge, free = np.array([X0, Y, 0.0]), -Y + 0.05
+    front = X0 if kind == "inset" else X0 - T
+    parts = [Part(11, "body", np.eye(4), shell, 500.0), Part(12, "door", np.eye(4), (door,), 500.0)]
+    joints = [Joint(JointType.FIXED, None, 11), Joint(JointType.REVOLUTE, 11, 12, np.array([0, 0, -1.0]), hinge, 0.0, 1.6)]
+    contacts = [(11, 12)]
+    if kind != "overlay_no_handle":
+        parts.append(Part(13, "handle", np.eye(4), (_box([front - 0.035, free - 0.011, H / 2 - 0.12],
+                                                          [front, free + 0.011, H / 2 + 0.12]),), 500.0))
+        joints[1] = Joint(JointType.REVOLUTE, 11, 12, np.array([0, 0, -1.0]), hinge, 0.0, 1.6, handle=13)
+        joints.append(Joint(JointType.FIXED, 12, 13))
+        contacts.append((12, 13))
+    obj = ArticulatedObject(1, "cabinet", tuple(parts), tuple(joints), tuple(contacts))
+    return Scene(f"thick_{kind}", 0, (obj,), (), np.array([6.0, 6.0])), hinge
+
+
+@pytest.fixture(scope="module")
+def rebuilt(tmp_path_factory):
+    out = {}
+    for kind in ("overlay", "inset", "overlay_no_handle"):
+        scene, hinge = _cabinet(kind)
+        files = write_scan(scan_scene(scene, params_for_preset("realistic"), seed=0),
+                           tmp_path_factory.mktemp(kind) / "scan")
+        rec = recon.reconstruct(files["scan_ply"], files["labels_json"], seed=0)
+        door = next(j for j in rec.objects[0].joints if j.type.value == "revolute")
+        out[kind] = (rec, door, hinge)
+    return out
+
+
+def test_an_overlay_door_hinges_on_the_carcass_front_and_its_thickness_widens_the_uncertainty(rebuilt):
+    _, door, hinge = rebuilt["overlay"]
+    off = door.origin - hinge
+    assert abs(off[0]) < 0.008 and abs(off[1]) < 0.008, f"hinge off {off[:2] * 1000} mm (x along the normal)"
+    # the pivot could lie anywhere across the 5 cm: RMS of the 32 mm beyond the board, uniform, is 18 mm
+    assert door.uncertainty.origin_m >= (T - 0.018) / np.sqrt(3.0) - 1e-6
+
+
+def test_an_inset_door_hinges_on_its_front_face(rebuilt):
+    _, door, hinge = rebuilt["inset"]
+    off = door.origin - hinge
+    assert abs(off[0]) < 0.006 and abs(off[1]) < 0.008, f"hinge off {off[:2] * 1000} mm (x along the normal)"
+    assert door.uncertainty.origin_m < 0.01          # decided by the carcass beside it: nothing added
+
+
+def test_a_handleless_door_spanning_its_body_says_its_hinge_side_is_undecided(rebuilt):
+    rec, _, _ = rebuilt["overlay_no_handle"]
+    assert any("hinge side undecided" in w for w in rec.warnings), rec.warnings
+    rec, _, _ = rebuilt["overlay"]
+    assert not any("hinge side undecided" in w for w in rec.warnings)
+
+
+def test_without_points_at_the_hinge_edge_the_board_rule_stays():
+    """A door's points but none of its carcass near the hinge edge (the carcass's side hidden by a neighbour):
+    the hinge stays on the board's back face, nothing undecided."""
+    rng = np.random.default_rng(0)
+    door = np.c_[rng.uniform(-0.01, 0.01, 500), rng.uniform(-0.3, 0.0, 500), rng.uniform(0.0, 0.7, 500)]
+    body = np.c_[rng.uniform(0.05, 0.5, 500), rng.uniform(-0.5, -0.4, 500), rng.uniform(0.0, 0.7, 500)]
+    d = hinge_depth(0.0, 0.018, np.array([-1.0, 0, 0]), np.array([0, 1.0, 0]), 0.0, np.array([0, 0, 1.0]),
+                    (0.0, 0.7), SeenPoints(door, body, body, None), JointConfig())
+    assert (d.depth, d.undecided, d.how) == (0.018, 0.0, "board")
