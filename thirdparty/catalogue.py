@@ -1,10 +1,10 @@
-"""The corpus: 25 articulated objects in other people's conventions (:mod:`thirdparty.build`).
+"""The corpus: 26 articulated objects in other people's conventions (:mod:`thirdparty.build`).
 
 Kinds covered: base and wall cabinets, kitchen units, drawer stacks, a dresser, a file cabinet,
 microwaves, refrigerators (stacked and side-by-side double doors), a dishwasher and an oven (bottom-hinged
 doors), a top-hinged wall flap, a wardrobe, a safe; double doors and stacked fronts that touch at rest
 (gap 0) or overlap by 1 mm; joints that open toward negative values; continuous hinges; rotated joint frames and frames at
-the far end of the hinge; handles as links, unnamed mesh geometry, one mesh with their panel, knobs, or
+the far end of the hinge; handles as links, unnamed mesh geometry, one mesh with their panel, knobs, an edge-pull profile, or
 none (a handleless wall-cabinet door overhanging the carcass's bottom, to be pulled from below).
 
 ``FIXTURES`` names the few objects the test suite builds (a spread of those kinds); the benchmark builds
@@ -47,8 +47,12 @@ CATALOGUE: tuple = (
       fronts=(F("door_left", (0, 0.4, 1.35, 2.05), frame="rotated"),
               F("door_right", (0.4, 0.8, 1.35, 2.05), frame="rotated"))),
     O("wall_cabinet_finger_pull", "wall_cabinet", 0.6, 0.35, 0.7, elevation=1.4, names="camel",
-      notes="handleless: the door overhangs the carcass's bottom by 3 cm, to be pulled from below",
+      notes="handleless: the door overhangs the carcass's bottom by 3 cm, to be pulled from below (nothing a "
+            "scan shows tells its hinge side)",
       fronts=(F("door_right", (0, 0.6, 1.37, 2.1), handle="none"),)),
+    O("wall_cabinet_edge_pull", "wall_cabinet", 0.5, 0.33, 0.72, elevation=1.42, names="words",
+      notes="handleless door whose finger pull is an aluminium edge profile along its free edge",
+      fronts=(F("door_left", (0, 0.5, 1.42, 2.14), handle="profile"),)),
     O("wall_flap", "wall_cabinet", 0.8, 0.35, 0.4, elevation=1.45, names="words",
       fronts=(F("door_top", (0, 0.8, 1.45, 1.85), limit=1.4),)),
     O("microwave_left_hinge", "microwave", 0.5, 0.4, 0.3, elevation=0.9, names="words", place=(1.2, 0.2, 10),

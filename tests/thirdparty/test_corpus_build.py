@@ -15,7 +15,7 @@ def test_the_catalogue_has_20_objects_and_40_fronts_of_every_kind():
     fronts = [f for s in thirdparty.CATALOGUE for f in s.fronts]
     assert len(thirdparty.CATALOGUE) >= 20 and len(fronts) >= 40
     assert {f.kind for f in fronts} == {"drawer", "door_left", "door_right", "door_bottom", "door_top"}
-    assert {f.handle for f in fronts} == {"bar", "mesh", "merged", "knob", "knob_link", "none"}
+    assert {f.handle for f in fronts} == {"bar", "mesh", "merged", "knob", "knob_link", "profile", "none"}
     assert {f.sign for f in fronts} == {1, -1} and any(f.continuous for f in fronts)
     assert any(s.gap == 0.0 for s in thirdparty.CATALOGUE) and not all(s.inertials for s in thirdparty.CATALOGUE)
 
