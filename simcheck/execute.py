@@ -2,7 +2,8 @@
 
 How the robot is driven: every segment's waypoints are time-parametrised so that no joint exceeds
 ``speed_scale`` x its URDF velocity limit (capped at ``max_joint_speed``; the opening segment is slower
-by ``open_speed_scale``); at every physics step (160 Hz) the robot's joints get a position target and a
+by ``open_speed_scale``, the approach to the pre-grasp faster by ``approach_speed_scale``:
+:func:`segment_timing`); at every physics step (160 Hz) the robot's joints get a position target and a
 feed-forward velocity (PyBullet position control with the joints' URDF effort limits). The scene's joints
 are never set during a task: the object moves only because the robot pushes or pulls it.
 
@@ -51,11 +52,11 @@ from simcheck.rollout import Rollout
 from simcheck.world import World
 
 __all__ = ["execute_task", "handle_link_for", "moving_link_for", "timed_waypoints", "waypoint_timing", "speed_limits",
-           "command_trajectory"]
+           "segment_timing", "command_trajectory"]
 
 log = logging.getLogger(__name__)
 
-_, GRASP, OPEN, RELEASE, _ = SEGMENT_NAMES
+APPROACH, GRASP, OPEN, RELEASE, _ = SEGMENT_NAMES
 _, PUSH, _ = PUSH_SEGMENT_NAMES
 
 
@@ -414,8 +415,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
             set_fingers(True, config.gripper_open_time, hold)
         if close_first and fingers_open:
             close_and_grasp(hold)
-        hold = _follow(world, rec, seg, vmax * (config.open_speed_scale if seg.name in (OPEN, PUSH) else 1.0), config,
-                       check_slip)
+        hold = _follow(world, rec, seg, *segment_timing(seg.name, vmax, config), check_slip)
         if seg.name == opening:
             snap("opened")
         if close_after and fingers_open:
@@ -479,10 +479,26 @@ def speed_limits(vmax_urdf: np.ndarray, config: PhysicsConfig = DEFAULT_PHYSICS)
                     config.max_joint_speed)
 
 
+def segment_timing(name: str, vmax: np.ndarray, config: PhysicsConfig = DEFAULT_PHYSICS
+                   ) -> tuple[np.ndarray, PhysicsConfig]:
+    """How the executor times a planner's segment named ``name``: ``(joint speeds (dof,) rad/s or m/s, the physics
+    settings with its ramp)``, from ``vmax`` (dof,) of :func:`speed_limits`. The opening (``open``, ``push``) is
+    slower by ``open_speed_scale``. The approach (gripper open, away from the part) is faster by
+    ``approach_speed_scale`` with its ``ramp_time`` longer by as much: its accelerations -- on the ramps and where
+    the timing slows for a turn (:func:`waypoint_timing`) -- are those of every other segment, only its top speed
+    is higher. Every other segment runs at ``vmax``."""
+    if name in (OPEN, PUSH):
+        return vmax * config.open_speed_scale, config
+    if name == APPROACH and config.approach_speed_scale != 1.0:
+        k = config.approach_speed_scale
+        return vmax * k, config.replace(ramp_time=config.ramp_time * k)
+    return vmax, config
+
+
 def command_trajectory(seg: Segment, vmax: np.ndarray, config: PhysicsConfig = DEFAULT_PHYSICS
                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-    """The timing the executor gives ``seg`` (a planner's segment, ``vmax`` (dof,) from :func:`speed_limits`,
-    times the opening segment's ``open_speed_scale`` for the opening), as explicit waypoints:
+    """The timing the executor gives ``seg`` (a planner's segment; ``vmax`` (dof,) and ``config`` as
+    :func:`segment_timing` gives them for it), as explicit waypoints:
     ``(t (m,) s from the segment's start, q (m, dof), tool positions (m, 3) or None)``: the position targets
     of every control step, without the ones that lie on the straight line between their neighbours.
     Executed with these times (``Segment.t``) the robot gets the same position targets at every control step."""

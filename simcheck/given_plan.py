@@ -264,14 +264,13 @@ def given_from_result(plan: PlanResult, vmax_urdf: np.ndarray, physics: PhysicsC
     the ``open`` segment expects the task joint to move from ``start_object_q`` by ``amount`` (in a plan finished
     by a push, ``open`` and ``push`` each expect the move they plan)."""
     from planners.task import Expectation
-    from simcheck.execute import command_trajectory, speed_limits
+    from simcheck.execute import command_trajectory, segment_timing, speed_limits
 
     vmax = speed_limits(vmax_urdf, physics)
     segments = []
     pushed = any(s.name == "push" for s in plan.segments)
     for s in plan.segments:
-        t, q, tool = command_trajectory(s, vmax * (physics.open_speed_scale if s.name in ("open", "push") else 1.0),
-                                        physics)
+        t, q, tool = command_trajectory(s, *segment_timing(s.name, vmax, physics))
         T = np.full((len(t), 4, 4), np.nan)
         if tool is not None:
             T[:, :3, 3] = tool

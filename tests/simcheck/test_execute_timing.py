@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from planners.task import Segment
-from simcheck.config import DEFAULT_PHYSICS
+from simcheck.config import DEFAULT_CRITERIA, DEFAULT_PHYSICS
 from simcheck.execute import command_trajectory, timed_waypoints, waypoint_timing
 
 VMAX = np.array([1.0, 0.1])                 # a fast joint (a base, m/s) and a slow one (a torso lift, m/s)
@@ -57,3 +57,36 @@ def test_the_tool_slows_down_before_a_hand_over_instead_of_stopping_in_one_step(
     assert times[-1] > plain[-1]                         # the slow-down costs time ...
     assert times[-1] < plain[-1] + 2 * ramp              # ... about one ramp
     assert (rho[:20] >= 0.5 - 1e-12).all() and (rho[:20] > 0.5).any()    # decelerating into the hand-over
+
+
+def test_the_approach_runs_faster_with_the_same_accelerations():
+    """The approach's top speed is approach_speed_scale x higher, its ramps as much longer: on a path with a turn
+    the largest joint acceleration of its commanded trajectory stays what the ordinary timing commands."""
+    from simcheck.execute import segment_timing
+    vmax = np.array([0.5, 0.8])
+    physics = DEFAULT_PHYSICS
+    k = physics.approach_speed_scale
+    assert k > 1.0
+    v, p = segment_timing("grasp", vmax, physics)
+    assert np.allclose(v, vmax) and p is physics
+    v, p = segment_timing("open", vmax, physics)
+    assert np.allclose(v, vmax * physics.open_speed_scale) and p is physics
+    v, p = segment_timing("approach", vmax, physics)
+    assert np.allclose(v, vmax * k) and p.ramp_time == pytest.approx(physics.ramp_time * k)
+    q = np.concatenate([np.stack([np.linspace(0, 1.0, 21), np.zeros(21)], 1),
+                        np.stack([np.full(20, 1.0), np.linspace(0.05, 1.0, 20)], 1)])    # an L: one joint, the other
+    seg = Segment("approach", q, np.zeros(len(q)), np.repeat(np.eye(4)[None], len(q), axis=0), "open")
+
+    def peak_acceleration(v, p):      # as simcheck's given-plan criterion reads it (plan_timing, 0.1 s window)
+        t, qq, _ = command_trajectory(seg, v, p)
+        w = DEFAULT_CRITERIA.acceleration_window
+        x = np.arange(-w, t[-1] + w, p.time_step)
+
+        def at(y):
+            return np.stack([np.interp(y, t, qq[:, j]) for j in range(2)], axis=1)
+
+        return np.abs(at(x + w) - 2 * at(x) + at(x - w)).max() / w ** 2, t[-1]
+
+    a_fast, t_fast = peak_acceleration(*segment_timing("approach", vmax, physics))
+    a_slow, t_slow = peak_acceleration(vmax, physics)
+    assert a_fast <= a_slow * 1.05 and t_fast < 0.8 * t_slow   # 1.05: the window spans more of the faster path
