@@ -49,7 +49,7 @@ class PhysicsConfig:
             every state of the path collision-checked with the planner's clearance), with its ``ramp_time`` longer
             by as much: its accelerations are those of every other segment, only its top speed is higher (1.8: the
             Panda's joints at up to 1.44 rad/s of their 2.175-2.61 spec, the base 0.9 m/s of its URDF 1.0). The
-            retreat keeps ``speed_scale``: right after the release, faster, it loaded a shoulder to its effort limit.
+            retreat keeps ``speed_scale`` (why: docs/decisions.md, "CPU per certification").
         ramp_time: seconds over which every segment's speed ramps up from rest and back down to rest
             (a trapezoidal velocity profile, as a real arm's acceleration limits impose; with a step in
             speed the arm jerks a grasped drawer to speed in one physics step).
