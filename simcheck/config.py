@@ -43,7 +43,8 @@ class PhysicsConfig:
             moving part; how much deeper than at rest they then interpenetrate is recorded instead
             (``CriteriaConfig.rest_contact_slack``; the policy: docs/decisions.md, "Touching at rest").
         speed_scale: fraction of each robot joint's URDF velocity limit used to time-parametrise a plan.
-        max_joint_speed: cap on any robot joint speed while executing, rad/s or m/s.
+        max_joint_speed: cap on any robot joint speed while executing, rad/s or m/s (the approach's cap is
+            ``approach_speed_scale`` times this).
         open_speed_scale: extra slow-down of the opening segment (pulling an object is done gently).
         approach_speed_scale: extra speed-up of the approach to the pre-grasp (gripper open, away from the part,
             every state of the path collision-checked with the planner's clearance), with its ``ramp_time`` longer
