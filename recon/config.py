@@ -384,11 +384,10 @@ class JointConfig:
     """The thickest door (m) looked for behind a front face (a refrigerator's door with its liner)."""
     hinge_depth_tolerance: float = 0.015
     """A door measured thicker than the front's board by at most this (m) keeps the board's back face: the
-    measurement's own spread (18 mm doors of realistic scans measured 13-28 mm: label bleed, grazing noise)."""
+    measurement's own spread (label bleed, grazing noise; figures: docs/decisions.md, thick doors)."""
     hinge_depth_noise_sigmas: float = 1.0
     """... or by at most this many times the depth noise of the door's face points (their robust spread
-    across it, recon/depth_noise.py): on ScanNet-style scans (2-6 cm) 18 mm doors measured up to 49 mm, each
-    less than a sigma over the board; realistic 5-6 cm doors measured 53-62 mm with a 2.1 cm sigma."""
+    across it, recon/depth_noise.py); what it admits and refuses: docs/decisions.md, thick doors."""
     hinge_side_margin: float = 0.03
     """A door without a handle is hinged at the edge nearer its body's edge; when the two edges' distances
     to the body's edges differ by less than this (m, about what a scan's edges are off by) the side is
