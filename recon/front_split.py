@@ -23,7 +23,7 @@ import numpy as np
 from recon.config import ScanConfig
 from recon.scan import PartPoints, Scan
 
-__all__ = ["FRONT_LABELS", "horizontal_gaps", "handle_levels", "split_fronts"]
+__all__ = ["FRONT_LABELS", "horizontal_gaps", "handle_heights", "handle_levels", "split_fronts"]
 
 FRONT_LABELS = frozenset({"drawer", "door"})
 """Labels of the parts that are checked for several fronts under one label."""
@@ -61,21 +61,31 @@ def horizontal_gaps(z: np.ndarray, config: ScanConfig) -> list[float]:
 HANDLE_LABELS = frozenset({"handle", "knob"})
 
 
-def handle_levels(front: PartPoints, parts: tuple[PartPoints, ...], config: ScanConfig) -> list[float]:
-    """Cut heights (m, lowest first) between the levels of the handles standing on ``front``.
-
-    A handle/knob of ``parts`` (one object's parts) stands on the front part nearest its centre; handle
-    centres less than ``front_split_min_height`` apart in height are one level. The front is cut midway
-    between consecutive levels at least 2 x ``front_split_min_height`` apart, where that leaves at least
-    ``front_split_min_height`` of it above and below; empty when its handles stand at one level.
-    """
+def handle_heights(parts: tuple[PartPoints, ...]) -> dict[int, list[float]]:
+    """{front part id: the heights (m, lowest first) of the handle/knob centres standing on it} for one
+    object's ``parts``: a handle stands on the front part nearest its centre."""
     from scipy.spatial import cKDTree
 
     fronts = [p for p in parts if p.label in FRONT_LABELS and len(p.points)]
+    if not fronts:
+        return {}
     trees = [cKDTree(p.points) for p in fronts]
-    zs = sorted(float(c[2]) for c in (h.points.mean(axis=0) for h in parts
-                                      if h.label in HANDLE_LABELS and len(h.points))
-                if fronts[int(np.argmin([t.query(c)[0] for t in trees]))] is front)
+    out: dict[int, list[float]] = {}
+    for h in parts:
+        if h.label in HANDLE_LABELS and len(h.points):
+            c = h.points.mean(axis=0)
+            out.setdefault(fronts[int(np.argmin([t.query(c)[0] for t in trees]))].part_id, []).append(float(c[2]))
+    return {k: sorted(v) for k, v in out.items()}
+
+
+def handle_levels(front: PartPoints, zs: list[float], config: ScanConfig) -> list[float]:
+    """Cut heights (m, lowest first) between the levels of the handles standing on ``front`` at heights
+    ``zs`` (sorted, :func:`handle_heights`).
+
+    Handle centres less than ``front_split_min_height`` apart in height are one level. The front is cut
+    midway between consecutive levels at least 2 x ``front_split_min_height`` apart, where that leaves at
+    least ``front_split_min_height`` of it above and below; empty when its handles stand at one level.
+    """
     levels: list[list[float]] = []
     for z in zs:
         if levels and z - levels[-1][-1] < config.front_split_min_height:
@@ -100,12 +110,14 @@ def split_fronts(scan: Scan, config: ScanConfig) -> tuple[Scan, list[str]]:
     part_id = scan.part_id.copy()
     objects, warnings = [], []
     for obj in scan.objects:
-        parts = []
+        parts, heights = [], None
         for p in obj.parts:
             gaps = horizontal_gaps(p.points[:, 2], config) if p.label in FRONT_LABELS else []
             cue = "separated by horizontal gaps"
             if not gaps and p.label == "drawer":
-                gaps, cue = handle_levels(p, obj.parts, config), "with handles stacked one above another, cut"
+                heights = handle_heights(obj.parts) if heights is None else heights
+                gaps = handle_levels(p, heights.get(p.part_id, []), config)
+                cue = "with handles stacked one above another, cut"
             if not gaps:
                 parts.append(p)
                 continue

@@ -73,6 +73,7 @@ def with_joint_uncertainty(joints: tuple[JointEstimate, ...], parts, prims: dict
     if ucfg.samples <= 0:
         return joints
     by_id = {p.part_id: p for p in parts}
+    part_points = {k: (q.points, q.normals) for k, q in by_id.items()}
     children: dict[int, list[int]] = {}
     for j in joints:
         if j.parent_part_id is not None:
@@ -87,8 +88,8 @@ def with_joint_uncertainty(joints: tuple[JointEstimate, ...], parts, prims: dict
                    if k in by_id and by_id[k].label in ("handle", "knob")]
         others = [prims[k] for k in sub if k != j.child_part_id]
         p, c = by_id[j.parent_part_id], by_id[j.child_part_id]
-        seen = seen_points({k: (q.points, q.normals) for k, q in by_id.items()}, j.parent_part_id,
-                           j.child_part_id, sub)
+        seen = (seen_points(part_points, j.parent_part_id, j.child_part_id, sub)
+                if j.type is JointType.REVOLUTE else None)
         u = joint_uncertainty(j.type, _PartData(prims[j.parent_part_id], p.points, p.normals),
                               _PartData(prims[j.child_part_id], c.points, c.normals), handles, others,
                               obstacles_for(sub), config, seed=(int(seed) * 7919 + j.child_part_id) % 2**31,
