@@ -11,7 +11,8 @@ Layout (format ``partscene.graph/1``; lengths in metres, angles in radians, worl
                              "shapes": [{"type", "size", "T_world_part"}]}],
                   "joints": [{"name", "type", "parent_part_id", "child_part_id", "axis", "origin",
                               "lower", "upper", "contact_score", "handle_part_id",
-                              "uncertainty": {"axis_deg", "origin_m", "upper", "samples", "method"}}],
+                              "uncertainty": {"axis_deg", "origin_m", "upper", "samples", "method",
+                                              "side_undecided"}}],
                   "contacts": [{"parent_part_id", "child_part_id", "score", "align", "dist",
                                 "parent_plane", "child_plane"}]}],
      "supports": [[object id, supporter id | null]], "proximal": [[a, b]],
@@ -29,7 +30,9 @@ A part's ``size`` follows :mod:`recon.primitive` (box extents; cylinder (2r, 2r,
 z); sphere (2r, 2r, 2r)). A part's ``shapes`` are its articulated-template shapes (a drawer's front and box, a body's carcass
 panels; empty = the fitted primitive alone). A root joint has ``parent_part_id`` null (its parent is the world link). A movable joint's ``uncertainty``
 (recon/joint_uncertainty.py) gives the RMS spread of its axis (deg), of its axis position perpendicular to
-the axis (m) and of its upper limit over ``samples`` resamplings; absent on fixed joints.
+the axis (m) and of its upper limit over ``samples`` resamplings, and ``side_undecided`` (true: a handleless
+door whose hinge side the scan does not decide, hinged at one edge with the other as likely; false for
+drawers); absent on fixed joints.
 """
 
 from __future__ import annotations

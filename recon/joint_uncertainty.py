@@ -24,9 +24,11 @@ reference; the spreads are RMS deviations from it:
 What the bootstrap measures is the sampling variability of the fit: few points, noisy points and
 uneven coverage widen it. It does not see systematic errors the fit shares across replicates (a part
 occluded the same way in every replicate, label bleed); the certifier adds documented physics and
-robot spreads on top (simcheck/robust_sampling.py). The replicates are computed in the scan's frame
-(before the pipeline's support / upright moves of whole objects, which move every replicate alike).
-ICP and the candidate search are not re-run (cost).
+robot spreads on top (simcheck/perturbations.py). A door whose hinge side the scan does not decide
+(no handle, both edges as near its body's edges) is flagged ``side_undecided``: the certifier samples both,
+and a replicate's hinge is measured from the nearer of the two lines (the side is not a spread across the door).
+The replicates are computed in the scan's frame (before the pipeline's support / upright moves of whole
+objects, which move every replicate alike). ICP and the candidate search are not re-run (cost).
 """
 
 from __future__ import annotations
@@ -40,6 +42,7 @@ from recon.fitting import denoised_box, dominant_yaw
 from recon.joints import movable_joint_detail, seen_points
 from recon.model import JointEstimate, JointType, JointUncertainty
 from recon.primitive import Primitive, PrimitiveKind
+from scenes.hinge_mirror import other_edge_origin
 
 __all__ = ["METHOD", "with_joint_uncertainty", "joint_uncertainty"]
 
@@ -122,6 +125,10 @@ def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, han
     chi = _capped(child, ucfg.max_points, rng)
     obstacles = _near(obstacles, [parent.prim, child.prim, *others], ucfg.obstacle_margin)
     ref = _replicate(jtype, par, chi, None, None, handles, others, obstacles, config, sweep=True)
+    # a door hinged at whichever edge: its hinge side is a guess (flagged, sampled apart by the certifier),
+    # so a replicate's line is measured from the nearer of the two lines, not across the door
+    undecided, side = _hinge_doubts(parent, child, handles, config, seen) if jtype is JointType.REVOLUTE else (0.0, False)
+    lines = [ref[1]] + ([other_edge_origin(ref[1], ref[0], child.prim.T_world_part, child.prim.size)] if side else [])
     ang, off, dup = [], [], []
     for k in range(ucfg.samples):
         ip = rng.integers(len(par.points), size=len(par.points))
@@ -129,8 +136,8 @@ def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, han
         sweep = k < ucfg.limit_samples
         axis, origin, upper = _replicate(jtype, par, chi, ip, ic, handles, others, obstacles, config, sweep)
         ang.append(np.degrees(np.arccos(np.clip(abs(float(axis @ ref[0])), -1.0, 1.0))))
-        d = origin - ref[1]
-        off.append(float(np.linalg.norm(d - (d @ ref[0]) * ref[0])))
+        d = [origin - o for o in lines]
+        off.append(min(float(np.linalg.norm(x - (x @ ref[0]) * ref[0])) for x in d))
         if sweep:
             dup.append(upper - ref[2])
     rms = lambda x: float(np.sqrt(np.mean(np.square(x))))   # noqa: E731
@@ -141,20 +148,21 @@ def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, han
         prior = ucfg.door_stop_prior if ref[2] >= config.joints.door_max_angle - 1e-9 else 0.0
     # a thick door's pivot lies anywhere across the thickness the scan leaves undecided (uniform over it,
     # the estimate at its back end: RMS undecided / sqrt(3))
-    undecided = _undecided_depth(jtype, parent, child, handles, config, seen) if jtype is JointType.REVOLUTE else 0.0
     return JointUncertainty(rms(ang), float(np.hypot(rms(off), undecided / np.sqrt(3.0))),
-                            float(np.hypot(upper, prior)), int(ucfg.samples), METHOD)
+                            float(np.hypot(upper, prior)), int(ucfg.samples), METHOD, side)
 
 
-def _undecided_depth(jtype: JointType, parent: _PartData, child: _PartData, handles: list[Primitive],
-                     config: ReconConfig, seen) -> float:
-    """The span (m) across a door's thickness where its pivot may lie, from all of the parts' points
-    (:func:`recon.hinge_depth.hinge_depth`; 0 without ``seen``)."""
-    if seen is None:
-        return 0.0
-    line = movable_joint_detail(jtype, parent.prim, child.prim, handles, [child.prim], None, config.joints,
-                                config.contacts, config.fitting, seen=seen)[3]
-    return 0.0 if line is None else float(line.depth.undecided)
+def _hinge_doubts(parent: _PartData, child: _PartData, handles: list[Primitive], config: ReconConfig,
+                  seen) -> tuple[float, bool]:
+    """What the scan leaves open about a door's hinge, from all of the parts' points: the span (m) across its
+    thickness where its pivot may lie (:func:`recon.hinge_depth.hinge_depth`; 0 without ``seen``), and
+    whether its side is undecided (no handle, its two edges as near its body's edges:
+    ``JointConfig.hinge_side_margin``)."""
+    line = movable_joint_detail(JointType.REVOLUTE, parent.prim, child.prim, handles, [child.prim], None,
+                                config.joints, config.contacts, config.fitting, seen=seen)[3]
+    if line is None:
+        return 0.0, False
+    return (0.0 if seen is None else float(line.depth.undecided)), line.side_undecided(config.joints.hinge_side_margin)
 
 
 def _capped(part: _PartData, n: int, rng: np.random.Generator) -> _PartData:

@@ -87,6 +87,10 @@ class Hinge(NamedTuple):
     depth: HingeDepth
     side_margin: float | None
 
+    def side_undecided(self, margin: float) -> bool:
+        """True when nothing decides the side: no handle and the two edges within ``margin`` (m) as near."""
+        return self.side_margin is not None and self.side_margin < margin
+
 
 def hinge(parent: Primitive, door: Primitive, handles: list[Primitive], normal: np.ndarray,
           seen: SeenPoints | None = None, config: JointConfig = JointConfig()
@@ -299,7 +303,7 @@ def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str]
         axis, origin, upper, line = movable_joint_detail(jtype, prims[p], prims[c], hprims, [prims[k] for k in sub],
                                                          obstacles_for(sub), config, contacts, fitting, body,
                                                          seen_points(part_points, p, c, sub))
-        if line is not None and line.side_margin is not None and line.side_margin < config.hinge_side_margin:
+        if line is not None and line.side_undecided(config.hinge_side_margin):
             warn(f"{names[c]}: hinge side undecided: the {labels[c]} has no handle and its two edges lie as near "
                  f"its body's edges (within {line.side_margin * 1000:.0f} mm), so nothing in the scan shows which "
                  f"edge is free; hinged at one, the other is as likely (label its handle, finger pull or edge "

@@ -94,6 +94,9 @@ class JointUncertainty:
         perpendicular to the axis (for a drawer: where its front is, across its travel)
     upper : RMS deviation of the re-estimated upper limit (m for prismatic, rad for revolute)
     samples : number of resamplings they were measured over; method : how (e.g. "bootstrap")
+    side_undecided : a door's hinge side is a guess: it has no handle and its two edges lie as near its
+        body's edges, so the scan gives no reason to hinge it at one edge rather than the other (the other
+        edge is as likely: a robust certificate samples both)
     """
 
     axis_deg: float
@@ -101,15 +104,16 @@ class JointUncertainty:
     upper: float
     samples: int
     method: str
+    side_undecided: bool = False
 
     def as_dict(self) -> dict:
         return {"axis_deg": float(self.axis_deg), "origin_m": float(self.origin_m), "upper": float(self.upper),
-                "samples": int(self.samples), "method": str(self.method)}
+                "samples": int(self.samples), "method": str(self.method), "side_undecided": bool(self.side_undecided)}
 
     @classmethod
     def from_dict(cls, d: dict) -> "JointUncertainty":
         return cls(float(d["axis_deg"]), float(d["origin_m"]), float(d["upper"]), int(d["samples"]),
-                   str(d["method"]))
+                   str(d["method"]), bool(d.get("side_undecided", False)))
 
 
 @dataclass(frozen=True, eq=False)

@@ -18,8 +18,10 @@ The task's joint (world frame, at q = 0):
 Physics: uniform in :class:`PhysicsRanges`. Robot: base position error N(0, base_xy_m²) along x and y,
 heading N(0, base_yaw_deg²), perceived handle position N(0, handle_m²) per axis, position gain factor
 uniform in ``tracking_gain``; the re-perception error of the guarded approach N(0, reperception_m²) along x
-and y and N(0, reperception_yaw_deg²) in heading (drawn last: the other draws of a sample do not depend on
-it; zero without ``guarded_approach``). ``mode="physics"`` (robust ``--against`` a reference) leaves the joint and
+and y and N(0, reperception_yaw_deg²) in heading (zero without ``guarded_approach``). Last, the hinge side:
+a door whose side recon left undecided (:attr:`JointCentre.other_origin`) is hinged at its other edge with
+probability 1/2, the perturbations above applied about that hinge (``hinge_side`` "other"). The draws
+after the joint's come in a fixed order, each of a sample independent of the later ones. ``mode="physics"`` (robust ``--against`` a reference) leaves the joint and
 the robot as they are and samples the physics ranges only.
 """
 
@@ -50,7 +52,8 @@ class Perturbation:
     position minus the perceived one; tracking_gain : factor on the arm's position gain; reperception :
     (dx m, dy m, dyaw rad), world, the error of the robot's pose relative to the handle left after the
     guarded approach's correction (:mod:`simcheck.robust_correction`), or None: no correction (the plan is
-    replayed open loop).
+    replayed open loop); hinge_side : "estimated", or "other" when the door is hinged at its other edge
+    (its side undecided by the scan).
     """
 
     index: int
@@ -68,6 +71,7 @@ class Perturbation:
     handle_shift: tuple[float, float, float]
     tracking_gain: float
     reperception: tuple[float, float, float] | None = None
+    hinge_side: str = "estimated"
 
     def to_dict(self) -> dict:
         return {"sample": self.index, "joint": self.joint, "axis": list(self.axis), "origin": list(self.origin),
@@ -76,7 +80,8 @@ class Perturbation:
                 "mass_scale": self.mass_scale, "handle_friction": self.handle_friction,
                 "base_error": list(self.base_error), "handle_shift": list(self.handle_shift),
                 "tracking_gain": self.tracking_gain,
-                "reperception": None if self.reperception is None else list(self.reperception)}
+                "reperception": None if self.reperception is None else list(self.reperception),
+                "hinge_side": self.hinge_side}
 
 
 def _perpendicular_basis(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -120,6 +125,7 @@ def sample_perturbation(index: int, seed: int, joint: str, joint_type: str, urdf
     gain = rng.uniform(*robot.tracking_gain)
     reperceive = rng.standard_normal(3) * [robot.reperception_m, robot.reperception_m,
                                            np.radians(robot.reperception_yaw_deg)]
+    other_side = rng.random() < 0.5
     if mode == "physics":
         return Perturbation(int(index), joint, tuple(a_urdf), tuple(o_urdf), float(urdf_upper), 0.0, 0.0,
                             float(friction), float(damping), float(mass), float(handle_friction), (0.0, 0.0, 0.0),
@@ -132,6 +138,9 @@ def sample_perturbation(index: int, seed: int, joint: str, joint_type: str, urdf
         if a_c @ a_urdf < 0:
             a_c = -a_c
         o_c, u_c = np.asarray(centre.origin, dtype=np.float64), float(centre.upper)
+        other_side = other_side and centre.other_origin is not None
+        if other_side:               # the same line at the other edge, reversed: a positive angle still opens
+            a_c, o_c = -a_c, np.asarray(centre.other_origin, dtype=np.float64)
     u1, u2 = _perpendicular_basis(a_c)
     s_axis = np.radians(spreads.axis_deg) / np.sqrt(2.0)
     axis = _rotated(a_c, s_axis * (z_axis[0] * u1 + z_axis[1] * u2))
@@ -148,7 +157,8 @@ def sample_perturbation(index: int, seed: int, joint: str, joint_type: str, urdf
     return Perturbation(int(index), joint, tuple(map(float, axis)), tuple(map(float, origin)), float(upper), ang, off,
                         float(friction), float(damping), float(mass), float(handle_friction),
                         tuple(map(float, base)), tuple(map(float, handle)), float(gain),
-                        tuple(map(float, reperceive)) if robot.guarded_approach else None)
+                        tuple(map(float, reperceive)) if robot.guarded_approach else None,
+                        "other" if other_side else "estimated")
 
 
 def sample_perturbations(n: int, seed: int, *args, **kwargs) -> tuple[Perturbation, ...]:

@@ -17,6 +17,7 @@ N·s/m or N·m·s/rad.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from dataclasses import asdict, dataclass
@@ -124,13 +125,16 @@ class JointCentre:
     """Where the worlds' joint is centred (the value the scan supports), world frame at q = 0.
 
     axis : (3,) unit; origin : (3,) metres, a point on the axis; upper : m or rad; source : "graph.json"
-    (recon's estimate from the scan) or "urdf" (the certified URDF's own joint).
+    (recon's estimate from the scan) or "urdf" (the certified URDF's own joint). other_origin : (3,) a point
+    on the hinge line at the door's other edge when recon left its side undecided (:mod:`simcheck.hinge_side`;
+    half of the worlds are hinged there, about the reversed axis), else None.
     """
 
     axis: tuple[float, float, float]
     origin: tuple[float, float, float]
     upper: float
     source: str
+    other_origin: tuple[float, float, float] | None = None
 
 
 def check_robust_args(robust: int, min_success: float) -> None:
@@ -155,7 +159,8 @@ def joint_spreads_for(scene_urdf: str | Path, joint: str, joint_type: str, defau
     """The task joint's spreads and scan-supported centre from ``graph.json`` beside ``scene_urdf``.
 
     Returns (defaults[joint_type], None) (default :data:`DEFAULT_JOINT_SPREADS`) when there is no graph.json
-    or it has no such joint or no uncertainty for it. Raises :class:`SimcheckInputError` naming the file, joint and field on an
+    or it has no such joint or no uncertainty for it. A door whose ``uncertainty.side_undecided`` is true
+    gets its other hinge in the centre (:func:`simcheck.hinge_side.other_hinge_origin`). Raises :class:`SimcheckInputError` naming the file, joint and field on an
     unreadable graph.json or an uncertainty block with a missing, NaN or negative spread.
     """
     path = Path(scene_urdf).parent / "graph.json"
@@ -184,6 +189,13 @@ def joint_spreads_for(scene_urdf: str | Path, joint: str, joint_type: str, defau
             if len(centre.axis) != 3 or len(centre.origin) != 3 or not all(
                     math.isfinite(x) for x in (*centre.axis, *centre.origin, centre.upper)):
                 raise SimcheckInputError(f"{where}: axis / origin must be 3 finite numbers, upper finite")
+            side = u.get("side_undecided", False)
+            if not isinstance(side, bool):
+                raise SimcheckInputError(f"{where}: uncertainty.side_undecided is {side!r}; expected true or false")
+            if side and joint_type == "revolute":
+                from simcheck.hinge_side import other_hinge_origin
+                o = other_hinge_origin(scene_urdf, joint, centre.axis, centre.origin)
+                centre = dataclasses.replace(centre, other_origin=tuple(map(float, o)))
             return spreads, centre
     return default, None
 

@@ -146,14 +146,23 @@ def uncertainty_table(graph: Mapping) -> str:
             unit = "m" if j.get("type") == "prismatic" else "rad"
             rows.append([f"<code>{esc(j.get('name'))}</code>", esc(j.get("type", "")),
                          num(u.get("axis_deg"), key + ".axis_deg", "deg"), num(u.get("origin_m"), key + ".origin_m", "m"),
-                         num(u.get("upper"), key + ".upper", unit), num(u.get("samples"), key + ".samples"),
-                         esc(u.get("method", ""))])
+                         num(u.get("upper"), key + ".upper", unit),
+                         "undecided" if u.get("side_undecided") is True else "",
+                         num(u.get("samples"), key + ".samples"), esc(u.get("method", ""))])
     if not rows:
         return ""
     return ("<h3>How sure the reconstruction is of each joint</h3>"
             "<p>RMS spread over resamplings of the scan points (recon's bootstrap): axis direction, axis "
-            "position across the axis, upper limit.</p>"
-            + table(["joint", "type", "axis", "position", "upper limit", "samples", "method"], rows, "uncertainty"))
+            "position across the axis, upper limit; a door's hinge side when the scan does not decide it (a "
+            "robust certificate hinges half of its worlds at the other edge).</p>"
+            + table(["joint", "type", "axis", "position", "upper limit", "hinge side", "samples", "method"], rows,
+                    "uncertainty"))
+
+
+def _other_side(failure: Mapping) -> str:
+    p = failure.get("perturbation")
+    return ("<b>hinged at the door's other edge</b> (the scan does not decide its side): "
+            if isinstance(p, Mapping) and p.get("hinge_side") == "other" else "")
 
 
 def robust_table(task_key: str, robust: Mapping | None) -> str:
@@ -173,6 +182,6 @@ def robust_table(task_key: str, robust: Mapping | None) -> str:
     fails = [f for f in robust.get("failures", []) if isinstance(f, Mapping)]
     if fails:
         out += table(["failing sample", "outcome", "reason (replay with --replay-sample)"],
-                     [[esc(f.get("sample")), esc(f.get("outcome", "")), esc(f.get("reason", ""))] for f in fails],
-                     "robust")
+                     [[esc(f.get("sample")), esc(f.get("outcome", "")), _other_side(f) + esc(f.get("reason", ""))]
+                      for f in fails], "robust")
     return out

@@ -85,10 +85,12 @@ def test_an_inset_door_hinges_on_its_front_face(rebuilt):
 
 
 def test_a_handleless_door_spanning_its_body_says_its_hinge_side_is_undecided(rebuilt):
-    rec, _, _ = rebuilt["overlay_no_handle"]
+    rec, door, _ = rebuilt["overlay_no_handle"]
     assert any("hinge side undecided" in w for w in rec.warnings), rec.warnings
-    rec, _, _ = rebuilt["overlay"]
+    assert door.uncertainty.side_undecided            # graph.json says so: a robust certificate samples both sides
+    rec, door, _ = rebuilt["overlay"]
     assert not any("hinge side undecided" in w for w in rec.warnings)
+    assert not door.uncertainty.side_undecided
 
 
 def test_without_points_at_the_hinge_edge_the_board_rule_stays():
