@@ -33,9 +33,10 @@ class ScanConfig:
     min_part_points: int = 20
     """A part with fewer points is skipped with a warning naming it (too few to fit a primitive);
     ``recon build --min-part-points``."""
-    handle_min_part_points: int = 8
-    """... but a handle or knob is kept from this many points (at ScanNet density a handle shows 9-14):
-    its bar is placed on its mount's face where its points are (handle_shapes.py)."""
+    handle_min_part_points: int = 4
+    """... but a handle or knob is kept from this many points (at ScanNet density a handle shows 9-14, the
+    sparsest 4-7): its bar is placed on its mount's face where its points are (handle_shapes.py); its
+    points are one cluster (label_fragments.py). Why 4: docs/decisions.md ("Sparse parts")."""
     front_split_bin: float = 0.01
     """A drawer/door part's points are binned this high (m) along the vertical to find the horizontal
     gaps (dividers) between several fronts under one label (front_split.py)."""

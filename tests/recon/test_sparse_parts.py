@@ -31,13 +31,13 @@ def _sparse_handles(synth, n: int, seed: int = 0):
     return props, labels
 
 
-@pytest.mark.parametrize("seed", [0, 1])
-def test_handles_of_nine_points_are_kept_on_their_fronts(synth, seed):
-    rec = reconstruct_scan(scan_from_arrays(*_sparse_handles(synth, 9, seed)), seed=seed)
+@pytest.mark.parametrize("seed, n", [(0, 9), (1, 9), (0, 4), (1, 4)])
+def test_handles_of_four_to_nine_points_are_kept_on_their_fronts(synth, seed, n):
+    rec = reconstruct_scan(scan_from_arrays(*_sparse_handles(synth, n, seed)), seed=seed)
     obj = rec.objects[0]
     parts = {p.part_id: p for p in obj.parts}
     for hid, (mount, centre) in HANDLES.items():
-        assert parts[hid].n_points == 9
+        assert parts[hid].n_points == n
         assert np.linalg.norm(parts[hid].primitive.center - centre) < 0.03
         joint = next(j for j in obj.joints if j.child_part_id == hid)
         assert joint.parent_part_id == mount and joint.type.value == "fixed"
