@@ -317,6 +317,10 @@ def scan_from_arrays(props: dict[str, np.ndarray], labels: list[dict], *,
         if not parts:
             warn(f"object {oid} ({cat}): no part has enough points; the object is skipped")
             continue
+        if all(p.label in _SMALL_LABELS for p in parts):
+            warn(f"object {oid} ({cat}): only its handles / knobs have enough points (nothing of at least "
+                 f"{config.min_part_points} points to mount them on); the object is skipped")
+            continue
         objects.append(ObjectPoints(oid, cat, tuple(parts), tuple(skipped)))
     if not objects:
         raise ScanError(f"{source}: no labelled object has a part with at least "
