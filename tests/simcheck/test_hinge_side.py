@@ -81,3 +81,20 @@ def test_a_door_hinged_at_its_other_edge_does_not_open_so_it_is_not_certified_ro
     failed = {f["sample"] for f in block["failures"]}
     assert {i for i, s in enumerate(sides) if s == "other"} <= failed, block["failures"]
     assert cert[DOOR].status.value == "failed"
+
+
+def test_the_cli_names_a_side_undecided_that_is_not_a_boolean_and_exits_2(tmp_path):
+    import subprocess
+    import sys
+
+    scene = _undecided(tmp_path / "scene", value="yes")
+    r = subprocess.run([sys.executable, "-m", "simcheck", "certify", str(scene), "--task", f"open-door:{DOOR}",
+                        "--out", str(tmp_path / "out"), "--robust", "3"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2, r.stderr
+    assert f"joint '{DOOR}': uncertainty.side_undecided is 'yes'" in r.stderr
+    assert not (tmp_path / "out" / "certificate.json").exists()
+
+
+def test_an_unknown_joint_is_named():
+    with pytest.raises(SimcheckInputError, match="joint 'nope': not in the scene"):
+        other_hinge_origin(DATA / "cabinet.urdf", "nope", (0, 0, 1), (0, 0, 0))
