@@ -385,10 +385,11 @@ class JointConfig:
     """The thickest door (m) looked for behind a front face (a refrigerator's door with its liner)."""
     hinge_depth_tolerance: float = 0.015
     """A door measured thicker than the front's board by at most this (m) keeps the board's back face: the
-    measurement's own spread (label bleed, grazing noise; figures: docs/decisions.md, thick doors)."""
-    hinge_depth_noise_sigmas: float = 1.0
-    """... or by at most this many times the depth noise of the door's face points (their robust spread
-    across it, recon/depth_noise.py); what it admits and refuses: docs/decisions.md, thick doors."""
+    measurement's own spread at the seam (label bleed; figures: docs/decisions.md, thick doors)."""
+    hinge_depth_p_value: float = 0.001
+    """... and a thicker door only when its carcass's points at the hinge edge rule out, at this significance
+    (likelihood ratio, chi-square with 1 dof), every onset of its side face a door that thin would show
+    (the depth noise modelled; recon/hinge_depth.py, docs/decisions.md, thick doors)."""
     hinge_side_margin: float = 0.03
     """A door without a handle is hinged at the edge nearer its body's edge; when the two edges' distances
     to the body's edges differ by less than this (m, about what a scan's edges are off by) the side is

@@ -8,9 +8,16 @@ is decided by the door and its carcass, which the scan shows at the hinge edge:
 - **Overlay door** (it stands in front of its carcass and, closed, rests on it): at the hinge edge the
   door's edge strip and the carcass's side face meet where the door's back face rests on the carcass's
   front. The labels change there, along the depth: door points in front, carcass points behind. That
-  depth is the door's thickness. Any pivot between the door's front and back faces lets the door
-  swing without sweeping through its carcass (every point behind the pivot moves forward and across
-  the carcass's front edge), so one static scan cannot tell where in the thickness the pivot is: the
+  depth is the door's thickness. Most of the door's points there lie on its front face, though, whose
+  depth noise spreads them behind it (a 2 cm noise: 6 cm deep) whatever the door's thickness, so they
+  cannot tell a thick door from a board; the carcass's side face can: it begins at the door's back face.
+  A door is read thicker than its board only when its carcass's points rule out (likelihood ratio,
+  ``JointConfig.hinge_depth_p_value``; the depth noise modelled, :func:`onset_likelihood`) every onset
+  of that face up to the board plus ``hinge_depth_tolerance`` (the label bleed at the seam). Its
+  thickness is then the cut that misplaces the smallest shares of door and of carcass points (counts
+  would slide it into the side seen by fewer points). Any pivot between the door's front and back faces
+  lets the door swing without sweeping through its carcass (every point behind the pivot moves forward
+  and across the carcass's front edge), so one static scan cannot tell where in the thickness the pivot is: the
   estimate keeps the usual place, the back face at the carcass's front (where a hinge's leaf is screwed
   on the carcass), and reports the thickness beyond a board as *undecided* (the joint's uncertainty
   widens by it: :mod:`recon.joint_uncertainty`).
@@ -29,10 +36,16 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.stats import chi2, norm
 
 from recon.config import JointConfig
 
-__all__ = ["SeenPoints", "HingeDepth", "hinge_depth"]
+__all__ = ["SeenPoints", "HingeDepth", "hinge_depth", "onset_likelihood"]
+
+_MIN_NOISE = 0.001
+"""m: the depth noise assumed at least (a noiseless scan's onset is then its first carcass point's depth)."""
+_STRAY_SHARES = (0.01, 0.03, 0.1, 0.3)
+"""Shares of a window's carcass points the onset model lets be stray (the likeliest is taken)."""
 
 
 @dataclass(frozen=True)
@@ -96,15 +109,45 @@ def hinge_depth(front: float, board: float, normal: np.ndarray, out: np.ndarray,
         return board_rule
     kb, db, _ = window(seen.body)
     kd, dd, _ = window(seen.door)
-    # overlay: the depth where the labels change from door (in front) to carcass (behind)
     d_door, d_body = np.sort(dd[kd]), np.sort(db[kb])
     if len(d_door) < n_min or len(d_body) < n_min:
         return board_rule
+    # overlay: thick only when the carcass's points rule out its side face beginning where a board door's would
+    onsets, loglik = onset_likelihood(d_body, max(noise, _MIN_NOISE), -band, config.door_max_thickness + band)
+    thin = onsets <= board + config.hinge_depth_tolerance
+    ratio = 2.0 * (float(loglik.max()) - float(loglik[thin].max()))
+    if thin[int(np.argmax(loglik))] or ratio < chi2.isf(config.hinge_depth_p_value, 1):
+        return board_rule
+    # where the labels change from door (in front) to carcass (behind): the cut misplacing the smallest shares of
+    # each (their counts would slide it into the more sparsely seen one), the middle of the best cuts
     cuts = np.unique(np.concatenate([d_door, d_body]))
-    wrong = (len(d_door) - np.searchsorted(d_door, cuts, side="left")) + np.searchsorted(d_body, cuts, side="left")
-    cut = float(np.median(cuts[wrong == wrong.min()]))          # the middle of the cuts that split them best
-    behind = int(np.sum((d_body >= cut) & (d_body <= cut + config.hinge_edge_band)))
-    # a thickness the scan's own depth noise could make up is no thickness
-    if cut <= board + max(config.hinge_depth_tolerance, config.hinge_depth_noise_sigmas * noise) or behind < n_min:
+    wrong = ((len(d_door) - np.searchsorted(d_door, cuts, side="left")) / len(d_door)
+             + np.searchsorted(d_body, cuts, side="left") / len(d_body))
+    cut = float(np.median(cuts[wrong == wrong.min()]))
+    behind = int(np.sum((d_body >= cut) & (d_body <= cut + band)))
+    if cut <= board + config.hinge_depth_tolerance or behind < n_min:
         return board_rule
     return HingeDepth(cut, cut - board, "carcass front")
+
+
+def onset_likelihood(depths: np.ndarray, noise: float, lo: float, hi: float, step: float = 0.001
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """(onsets (k,), log-likelihoods (k,)): how well a carcass side face beginning at each onset explains the
+    carcass's points ``depths`` (n,) (m behind the door's front, all within the window [``lo``, ``hi``]).
+
+    The model: a face seen evenly from its onset on, each point moved along the depth by Gaussian noise of
+    ``noise`` (m, the door face's depth noise: the same camera's rays), plus a share of stray points (label
+    fragments, flying pixels) spread evenly over the window; that share is the likeliest of
+    ``_STRAY_SHARES`` for each onset (profile likelihood). Onsets run from 0 to ``hi`` less the window's
+    margin ``-lo`` in ``step`` (m).
+    """
+    x = np.asarray(depths, dtype=np.float64)
+    onsets = np.arange(0.0, hi + lo + step / 2, step)
+    u = (hi - onsets) / noise, (lo - onsets) / noise
+    # the face's density, Phi((x - onset) / noise), integrated over the window (the integral of Phi is u Phi + phi)
+    mass = noise * ((u[0] * norm.cdf(u[0]) + norm.pdf(u[0])) - (u[1] * norm.cdf(u[1]) + norm.pdf(u[1])))
+    loglik = np.empty(len(onsets))
+    for i, onset in enumerate(onsets):          # one onset at a time: a noiseless scan's window holds many points
+        face = norm.cdf((x - onset) / noise) / mass[i]
+        loglik[i] = max(float(np.log((1.0 - e) * face + e / (hi - lo)).sum()) for e in _STRAY_SHARES)
+    return onsets, loglik
