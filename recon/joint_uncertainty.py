@@ -39,7 +39,8 @@ import numpy as np
 
 from recon.config import FittingConfig, ReconConfig
 from recon.fitting import denoised_box, dominant_yaw
-from recon.joints import movable_joint_detail, seen_points
+from recon.hinge_depth import HingeDepth
+from recon.joints import movable_joint_detail
 from recon.model import JointEstimate, JointType, JointUncertainty
 from recon.primitive import Primitive, PrimitiveKind
 from scenes.hinge_mirror import other_edge_origin
@@ -76,7 +77,6 @@ def with_joint_uncertainty(joints: tuple[JointEstimate, ...], parts, prims: dict
     if ucfg.samples <= 0:
         return joints
     by_id = {p.part_id: p for p in parts}
-    part_points = {k: (q.points, q.normals) for k, q in by_id.items()}
     children: dict[int, list[int]] = {}
     for j in joints:
         if j.parent_part_id is not None:
@@ -91,12 +91,10 @@ def with_joint_uncertainty(joints: tuple[JointEstimate, ...], parts, prims: dict
                    if k in by_id and by_id[k].label in ("handle", "knob")]
         others = [prims[k] for k in sub if k != j.child_part_id]
         p, c = by_id[j.parent_part_id], by_id[j.child_part_id]
-        seen = (seen_points(part_points, j.parent_part_id, j.child_part_id, sub)
-                if j.type is JointType.REVOLUTE else None)
         u = joint_uncertainty(j.type, _PartData(prims[j.parent_part_id], p.points, p.normals),
                               _PartData(prims[j.child_part_id], c.points, c.normals), handles, others,
                               obstacles_for(sub), config, seed=(int(seed) * 7919 + j.child_part_id) % 2**31,
-                              seen=seen)
+                              hinge_depth=j.hinge_depth, side_undecided=j.hinge_side_undecided)
         out.append(replace(j, uncertainty=u))
     return tuple(out)
 
@@ -112,12 +110,13 @@ def _subtree(children: dict[int, list[int]], root: int) -> list[int]:
 
 def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, handles: list[Primitive],
                       others: list[Primitive], obstacles: np.ndarray, config: ReconConfig, seed: int,
-                      seen=None) -> JointUncertainty:
+                      hinge_depth: HingeDepth | None = None, side_undecided: bool = False) -> JointUncertainty:
     """The bootstrap spreads of one movable joint (see the module docstring).
 
     handles : the child's handle primitives (they decide the hinge side); others : the rest of the
-    child's subtree, swept with it; obstacles : (n, 3) world points for the limit sweep; seen : the
-    :class:`recon.hinge_depth.SeenPoints` of a door (how much of its thickness leaves the pivot undecided).
+    child's subtree, swept with it; obstacles : (n, 3) world points for the limit sweep; hinge_depth : where
+    a door's hinge lies across it (how much of its thickness leaves the pivot undecided) and side_undecided :
+    whether its side is a guess, as :func:`recon.joints.estimate_joints` found them from all the points.
     """
     ucfg = config.joint_uncertainty
     rng = np.random.default_rng(seed)
@@ -127,7 +126,9 @@ def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, han
     ref = _replicate(jtype, par, chi, None, None, handles, others, obstacles, config, sweep=True)
     # a door hinged at whichever edge: its hinge side is a guess (flagged, sampled apart by the certifier),
     # so a replicate's line is measured from the nearer of the two lines, not across the door
-    undecided, side = _hinge_doubts(parent, child, handles, config, seen) if jtype is JointType.REVOLUTE else (0.0, False)
+    revolute = jtype is JointType.REVOLUTE
+    undecided = float(hinge_depth.undecided) if revolute and hinge_depth is not None else 0.0
+    side = revolute and side_undecided
     lines = [ref[1]] + ([other_edge_origin(ref[1], ref[0], child.prim.T_world_part, child.prim.size)] if side else [])
     ang, off, dup = [], [], []
     for k in range(ucfg.samples):
@@ -150,19 +151,6 @@ def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, han
     # the estimate at its back end: RMS undecided / sqrt(3))
     return JointUncertainty(rms(ang), float(np.hypot(rms(off), undecided / np.sqrt(3.0))),
                             float(np.hypot(upper, prior)), int(ucfg.samples), METHOD, side)
-
-
-def _hinge_doubts(parent: _PartData, child: _PartData, handles: list[Primitive], config: ReconConfig,
-                  seen) -> tuple[float, bool]:
-    """What the scan leaves open about a door's hinge, from all of the parts' points: the span (m) across its
-    thickness where its pivot may lie (:func:`recon.hinge_depth.hinge_depth`; 0 without ``seen``), and
-    whether its side is undecided (no handle, its two edges as near its body's edges:
-    ``JointConfig.hinge_side_margin``)."""
-    line = movable_joint_detail(JointType.REVOLUTE, parent.prim, child.prim, handles, [child.prim], None,
-                                config.joints, config.contacts, config.fitting, seen=seen)[3]
-    if line is None:
-        return 0.0, False
-    return (0.0 if seen is None else float(line.depth.undecided)), line.side_undecided(config.joints.hinge_side_margin)
 
 
 def _capped(part: _PartData, n: int, rng: np.random.Generator) -> _PartData:
@@ -188,7 +176,7 @@ def _replicate(jtype, par: _PartData, chi: _PartData, ip, ic, handles, others, o
                config: ReconConfig, sweep: bool):
     """(axis, origin, upper) re-estimated from the points indexed by ``ip`` / ``ic`` (None = all); upper is
     NaN unless ``sweep`` (the limit's collision sweep is the costly part). A door's hinge is on its box's
-    back face here: the depth across a thick door is not resampled (:func:`_undecided_depth`)."""
+    back face here: the depth across a thick door is not resampled (``hinge_depth``, from all the points)."""
     p_box = _refit(par, ip, config.fitting)
     c_box = _refit(chi, ic, config.fitting)
     axis, origin, upper, _ = movable_joint_detail(jtype, p_box, c_box, handles, [c_box, *others],

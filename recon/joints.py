@@ -303,7 +303,8 @@ def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str]
         axis, origin, upper, line = movable_joint_detail(jtype, prims[p], prims[c], hprims, [prims[k] for k in sub],
                                                          obstacles_for(sub), config, contacts, fitting, body,
                                                          seen_points(part_points, p, c, sub))
-        if line is not None and line.side_undecided(config.hinge_side_margin):
+        side_undecided = line is not None and line.side_undecided(config.hinge_side_margin)
+        if side_undecided:
             warn(f"{names[c]}: hinge side undecided: the {labels[c]} has no handle and its two edges lie as near "
                  f"its body's edges (within {line.side_margin * 1000:.0f} mm), so nothing in the scan shows which "
                  f"edge is free; hinged at one, the other is as likely (label its handle, finger pull or edge "
@@ -316,5 +317,7 @@ def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str]
         if upper <= 0.0:
             warn(f"{names[c]}: the {labels[c]} cannot move without collision; upper limit 0")
         joints.append(JointEstimate(names[c], jtype, p, c, axis, origin, 0.0, float(upper), score,
-                                    handles[0] if handles else None))
+                                    handles[0] if handles else None,
+                                    hinge_depth=None if line is None else line.depth,
+                                    hinge_side_undecided=side_undecided))
     return tuple(joints)

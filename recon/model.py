@@ -19,6 +19,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from recon.config import ReconConfig
+from recon.hinge_depth import HingeDepth
 from recon.primitive import Primitive, SurfacePlane
 from scenes.description import JointType
 
@@ -129,6 +130,10 @@ class JointEstimate:
     contact_score : Cont of the tree edge (0 for the root and for parts that touch nothing)
     handle_part_id : the handle moved by this joint, or None
     uncertainty : JointUncertainty of a movable joint, None when not estimated (fixed joints)
+    hinge_depth : a door's :class:`recon.hinge_depth.HingeDepth` (where its hinge lies across its thickness)
+        and hinge_side_undecided : its hinge side is a guess (no handle, both edges as near its body's edges),
+        as the joint stage found them from all the scan points; for :mod:`recon.joint_uncertainty`, not
+        written to graph.json (what they leave open is in ``uncertainty``)
     """
 
     name: str
@@ -142,6 +147,8 @@ class JointEstimate:
     contact_score: float = 0.0
     handle_part_id: int | None = None
     uncertainty: JointUncertainty | None = None
+    hinge_depth: HingeDepth | None = None
+    hinge_side_undecided: bool = False
 
     def __post_init__(self):
         object.__setattr__(self, "type", JointType(self.type))
