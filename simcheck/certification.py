@@ -96,6 +96,7 @@ class Session:
         self.scene_links = set(scene_link_names(scene))
         self.last_rollout: Rollout | None = None
         self.save_plan, self.robot_label = False, "default"    # certify(save_plan=...): write out/plans/<joint>.plan.json
+        self.freeze_far = False         # execute with the parts nothing can reach frozen (worlds closed after the task)
         self.load_seconds = time.perf_counter() - t0
 
     def close(self) -> None:
@@ -214,7 +215,8 @@ class Session:
                                opening_axis=sign * np.asarray(est.axis_world, dtype=float),
                                closing=task.close, joint_range=float(ref.upper - ref.lower),
                                frame_callback=camera.snap if camera else None,
-                               sample_callback=on_sample if given or camera is not None and video else None)
+                               sample_callback=on_sample if given or camera is not None and video else None,
+                               freeze_far=self.freeze_far)
         self.last_rollout = rollout
         timings["execute"] = time.perf_counter() - t
         timings["execute_cpu"] = time.process_time() - c0
@@ -441,6 +443,7 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
         for task in parsed:                       # fresh worlds: a task's verdict never depends on the others
             with Session(scene, against, sim_robot, physics, gui=gui, visuals=visuals) as session:
                 session.save_plan, session.robot_label = bool(save_plan), _robot_label(save_plan)
+                session.freeze_far = not gui
                 results.append(_run_task(session, task, planner, seed, criteria, out_dir, images, video, None,
                                          session.load_seconds))
     certificate = Certificate(tasks=tuple(results), scene=_recorded_path(scene, out_dir),

@@ -92,6 +92,10 @@ class PhysicsConfig:
         contact_every: query contacts every this many physics steps (1 = 160 Hz:
             any contact lasting more than 6.25 ms is seen; the largest force/depth in between is kept).
         contact_tolerance: penetration depth (metres) below which a contact point is ignored when recording.
+        freeze_margin: a rollout that may (``execute_task(freeze_far=True)``) leaves out of the simulation every
+            moving scene part at rest farther than this, metres, from everything the plan's robot and the parts
+            it can move may sweep, and loads them again if the robot strays half of it from its path
+            (:mod:`simcheck.frozen_bodies`); 0: the whole scene is always simulated.
     """
 
     time_step: float = 1.0 / 160.0
@@ -127,6 +131,7 @@ class PhysicsConfig:
     control_every: int = 1
     contact_every: int = 1
     contact_tolerance: float = 0.0
+    freeze_margin: float = 0.15
 
     def replace(self, **changes) -> "PhysicsConfig":
         """A copy with ``changes`` applied."""

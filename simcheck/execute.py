@@ -47,6 +47,7 @@ from planners.handle import handle_link
 from planners.scene_urdf import read_scene_urdf
 from planners.task import PUSH_SEGMENT_NAMES, SEGMENT_NAMES, PlanResult, Segment
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
+from simcheck.frozen_bodies import FreezeGuard, far_parts
 from simcheck.grasp import grasp_formation, round_bar_axis
 from simcheck.rollout import Rollout
 from simcheck.world import World
@@ -170,6 +171,7 @@ class _Recorder:
         self.effort_history = np.zeros((self.window, dof))  # per step: |motor torque| / effort limit
         self.effort_peak = np.zeros(dof)                 # largest running mean since the last sample
         self.sampled_at = -1                              # the step of the last sample
+        self.guard = None                                 # a FreezeGuard when parts are frozen
 
     def grasp_point(self, T_world_handle: np.ndarray | None = None) -> np.ndarray:
         """(3,) world position of the grasped point of the handle (NaN when not attached);
@@ -273,6 +275,8 @@ class _Recorder:
         r["segment"].append(self.segment)
         r["robot_q"].append(w.robot_q())
         r["robot_q_target"].append(w.robot_q_target())
+        if self.guard is not None:
+            self.guard.check(r["robot_q"][-1], r["robot_q_target"][-1], self.t)
         r["object_q"].append(q)
         r["object_qd"].append(qd)
         T_handle = w.scene_link_pose(self.handle)
@@ -316,7 +320,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
                  requested_amount: float | None = None, reset_robot: bool = True,
                  frame_callback=None, sample_callback=None, opening_type: str = "",
                  opening_axis: np.ndarray | None = None, closing: bool = False,
-                 joint_range: float = float("nan")) -> Rollout:
+                 joint_range: float = float("nan"), freeze_far: bool = False) -> Rollout:
     """Execute ``plan`` in ``world`` with physics and return the recorded :class:`Rollout`.
 
     Args:
@@ -334,6 +338,10 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
         frame_callback: called as ``frame_callback(label)`` at key frames ("start", "grasped",
             "opened", "end") to take pictures.
         sample_callback: called with no argument after every recorded sample (e.g. video frames).
+        freeze_far: leave the moving scene parts nothing of the task can reach out of the simulation
+            (:mod:`simcheck.frozen_bodies`, ``config.freeze_margin``; not with ``frame_callback``: pictures show
+            the whole scene). They stay out when this returns (``world.frozen_joints``; ``world.thaw_parts()``
+            loads them again): for a world that is closed after the task.
     """
     t0 = time.perf_counter()
     robot = world.robot_spec
@@ -350,6 +358,12 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
     notes: list[str] = []
     if reset_robot:
         world.reset_robot(plan.segments[0].q[0], fingers_open=True)
+    if freeze_far and frame_callback is None and config.freeze_margin > 0:
+        far, weights = far_parts(world, plan, config.freeze_margin)
+        if far:
+            frozen = world.freeze_parts(far)
+            rec.guard = FreezeGuard(world, weights, config.freeze_margin)
+            log.debug("%s: %d scene joints frozen for the rollout: %s", joint, len(frozen), ", ".join(frozen))
     fingers_open = True
     snap = frame_callback or (lambda label: None)
     snap("start")

@@ -106,9 +106,10 @@ def spring_force(spring: GraspSpring, p_held: np.ndarray, v_held: np.ndarray, p_
     K = np.asarray(spring.stiffness, dtype=float)
     if K.ndim == 0:
         K = float(K) * np.eye(3)
-    w, V = eigh(K)
-    if w.max() > spring.max_stiffness:
-        K = (V * np.minimum(w, spring.max_stiffness)) @ V.T
+    if np.abs(K).sum(axis=1).max() > spring.max_stiffness:    # else no eigenvalue is above it (Gershgorin)
+        w, V = eigh(K)
+        if w.max() > spring.max_stiffness:
+            K = (V * np.minimum(w, spring.max_stiffness)) @ V.T
     stretch = p_tool - p_held
     f_spring = K @ stretch
     f = f_spring + min(spring.damping, spring.max_damping) * (v_tool - v_held)

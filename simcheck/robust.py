@@ -103,7 +103,8 @@ def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics
                 camera = KeyFrameCamera(world, world.scene_link_pose(handle)[:3, 3], np.array([*pivot, 1.0]),
                                         Path(out) / "images", f"sample{p.index}", video=video)
             rollout = execute_task(world, plan, phys, requested_amount=requested, opening_type=opening_type,
-                                   opening_axis=opening_axis, frame_callback=camera.snap if camera else None)
+                                   opening_axis=opening_axis, frame_callback=camera.snap if camera else None,
+                                   freeze_far=True)
             if out is not None:
                 rollout.save(Path(out) / "rollouts" / f"{file_stem(plan.task.joint)}_sample{p.index}.npz")
                 if camera is not None and video:

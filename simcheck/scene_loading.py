@@ -39,7 +39,7 @@ from simcheck.errors import SceneLoadError
 from simcheck.joint_table import JointInfo
 from simcheck.scene_bodies import ANCHOR, scene_bodies
 
-__all__ = ["LoadedScene", "load_scene"]
+__all__ = ["LoadedScene", "load_scene", "reload_part", "unload_part"]
 
 log = logging.getLogger(__name__)
 
@@ -58,6 +58,9 @@ class LoadedScene:
     disabled_overlaps : (link a, link b, depth m) of each pair overlapping deeper than ``overlap_tolerance``
     rest_contacts : (link a, link b, penetration at rest m, negative: a gap) of each pair in contact as
         loaded (their collisions disabled; the deep overlaps included)
+    parts : body id -> the moving part loaded as it (what :func:`reload_part` loads again; parts whose URDF
+        uses mesh pieces of the loading's temporary folder are left out)
+    flags : the PyBullet loadURDF flags of the moving parts
     """
 
     link_at: dict[str, tuple[int, int]]
@@ -68,6 +71,8 @@ class LoadedScene:
     joint_body: dict[str, int]
     disabled_overlaps: tuple[tuple[str, str, float], ...]
     rest_contacts: tuple[tuple[str, str, float], ...] = ()
+    parts: dict = dataclasses.field(default_factory=dict)
+    flags: int = 0
 
 
 def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig, visuals: bool = True) -> LoadedScene:
@@ -92,39 +97,18 @@ def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig, visuals: bo
     names: dict[tuple[int, int], str] = {}
     static_pose: dict[str, np.ndarray] = {}
     joint_at: dict[str, tuple[int, int]] = {}
+    parts: dict[int, _Body] = {}
     with tempfile.TemporaryDirectory(prefix="partscene_scene_") as tmp:
         for k, part in enumerate(_bodies(scene_urdf, tmp)):
-            f = Path(tmp) / f"body{k}.urdf"
-            f.write_text(part.urdf)
-            try:
-                with c_output_logged(f"loading part {k} of {scene_urdf}") as said:
-                    body = pb.loadURDF(str(f), part.position, part.quat_xyzw, useFixedBase=True,
-                                       flags=flags if part.moving else plain,
-                                       physicsClientId=c)
-            except pb.error as exc:
-                raise SceneLoadError(f"PyBullet cannot load a part of scene URDF {scene_urdf}: {exc}"
-                                     f"{pybullet_said(said)}") from exc
-            bj, bl = body_joint_table(c, body)
-            for name, index in bl.items():
-                if name != ANCHOR:
-                    link_at[name] = (body, index)
-                    names[(body, index)] = name
-            for info in bj.values():
-                joint_at[info.name] = (body, info.index)
+            body = _load_part(c, Path(tmp) / f"body{k}.urdf", part, flags if part.moving else plain,
+                              f"a part of scene URDF {scene_urdf}")
+            bj, bl = _register(c, body, link_at, names, joint_at)
             if not part.moving:
                 static_pose[next(iter(bl))] = link_pose(c, body, -1)
                 continue
-            for info in bj.values():
-                if info.type in ("revolute", "prismatic"):
-                    friction = max(joints[info.name].friction, config.min_joint_friction)
-                    pb.setJointMotorControl2(body, info.index, pb.VELOCITY_CONTROL, targetVelocity=0.0,
-                                             force=friction, physicsClientId=c)
-                    pb.changeDynamics(body, info.index, linearDamping=config.scene_joint_damping,
-                                      angularDamping=config.scene_joint_damping, physicsClientId=c)
-            for ancestor in part.static_ancestors:       # a link never collides with its ancestors
-                if ancestor in static_pose:
-                    for index in bl.values():
-                        pb.setCollisionFilterPair(body, link_at[ancestor][0], index, -1, 0, physicsClientId=c)
+            _set_up_moving(c, body, part, bj, bl, joints, config, static_pose, link_at)
+            if tmp not in part.urdf:                # no mesh piece of the temporary folder: loadable again
+                parts[body] = part
     disabled, resting = _filter_initial_overlaps(c, scene_urdf, names, config.overlap_tolerance,
                                                  config.rest_contact_gap)
     return LoadedScene(
@@ -133,7 +117,81 @@ def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig, visuals: bo
         joints={name: dataclasses.replace(info, index=joint_at[name][1] if name in joint_at else -1)
                 for name, info in joints.items()},
         joint_body={name: joint_at[name][0] for name in joints if name in joint_at}, disabled_overlaps=disabled,
-        rest_contacts=resting)
+        rest_contacts=resting, parts=parts, flags=flags)
+
+
+def _load_part(c: int, path: Path, part: "_Body", flags: int, what: str) -> int:
+    path.write_text(part.urdf)
+    try:
+        with c_output_logged(f"loading {what}") as said:
+            return pb.loadURDF(str(path), part.position, part.quat_xyzw, useFixedBase=True, flags=flags,
+                               physicsClientId=c)
+    except pb.error as exc:
+        raise SceneLoadError(f"PyBullet cannot load {what}: {exc}{pybullet_said(said)}") from exc
+
+
+def _register(c: int, body: int, link_at: dict, names: dict, joint_at: dict) -> tuple[dict, dict]:
+    """Enter ``body``'s links and joints into the name tables; returns its (joint table, link table)."""
+    bj, bl = body_joint_table(c, body)
+    for name, index in bl.items():
+        if name != ANCHOR:
+            link_at[name] = (body, index)
+            names[(body, index)] = name
+    for info in bj.values():
+        joint_at[info.name] = (body, info.index)
+    return bj, bl
+
+
+def _set_up_moving(c: int, body: int, part: "_Body", bj: dict, bl: dict, joints: dict[str, JointInfo],
+                   config: PhysicsConfig, static_pose: dict, link_at: dict) -> None:
+    """A moving part's joints get their friction motor and damping; its links never collide with its
+    never-moving ancestors."""
+    for info in bj.values():
+        if info.type in ("revolute", "prismatic"):
+            friction = max(joints[info.name].friction, config.min_joint_friction)
+            pb.setJointMotorControl2(body, info.index, pb.VELOCITY_CONTROL, targetVelocity=0.0,
+                                     force=friction, physicsClientId=c)
+            pb.changeDynamics(body, info.index, linearDamping=config.scene_joint_damping,
+                              angularDamping=config.scene_joint_damping, physicsClientId=c)
+    for ancestor in part.static_ancestors:       # a link never collides with its ancestors
+        if ancestor in static_pose:
+            for index in bl.values():
+                pb.setCollisionFilterPair(body, link_at[ancestor][0], index, -1, 0, physicsClientId=c)
+
+
+def unload_part(client: int, scene: LoadedScene, body: int) -> None:
+    """Remove the moving part ``body`` (one of ``scene.parts``) from the client and from ``scene``'s name
+    tables; :func:`reload_part` puts it back."""
+    for key in [k for k in scene.names if k[0] == body]:
+        del scene.link_at[scene.names.pop(key)]
+    for name in [n for n, b in scene.joint_body.items() if b == body]:
+        del scene.joint_body[name]
+    pb.removeBody(body, physicsClientId=client)
+
+
+def reload_part(client: int, scene: LoadedScene, part: "_Body", config: PhysicsConfig,
+                joint_values: dict[str, float]) -> int:
+    """Load the moving ``part`` again (as :func:`load_scene` did: friction motors, damping, collision filters
+    with its ancestors and with the links it touched at rest) with its joints at ``joint_values`` (name ->
+    m or rad), at rest; enter it into ``scene``'s name tables. Returns its new body id."""
+    c = client
+    with tempfile.TemporaryDirectory(prefix="partscene_part_") as tmp:
+        body = _load_part(c, Path(tmp) / "part.urdf", part, scene.flags, "a scene part again")
+    joint_at: dict[str, tuple[int, int]] = {}
+    bj, bl = _register(c, body, scene.link_at, scene.names, joint_at)
+    joints = {name: scene.joints[name] for name in bj}
+    _set_up_moving(c, body, part, bj, bl, joints, config, scene.static_pose, scene.link_at)
+    for name, (b, index) in joint_at.items():
+        scene.joint_body[name] = b
+        if name in joint_values and bj[name].type in ("revolute", "prismatic"):
+            pb.resetJointState(b, index, float(joint_values[name]), 0.0, physicsClientId=c)
+    own = {n for n in bl if n != ANCHOR}
+    for a, b, _ in scene.rest_contacts:                  # collisions disabled at load stay disabled
+        if a in own or b in own:
+            (ba, ia), (bb, ib) = scene.link_at[a], scene.link_at[b]
+            pb.setCollisionFilterPair(ba, bb, ia, ib, 0, physicsClientId=c)
+    scene.parts[body] = part
+    return body
 
 
 @dataclass(frozen=True)

@@ -39,7 +39,7 @@ from simcheck.joint_table import JointInfo
 from simcheck.rendering import render
 from simcheck.robot_binding import SimRobot
 from simcheck.robot_loading import LoadedRobot, load_robot
-from simcheck.scene_loading import load_scene
+from simcheck.scene_loading import load_scene, reload_part, unload_part
 
 __all__ = ["World", "JointInfo", "ContactPoint", "FLOOR", "display_available", "pybullet_version"]
 
@@ -88,6 +88,9 @@ class World:
         self._q_target: np.ndarray | None = None
         self._movable: list[int] | None = None
         self._tool_jac_point: list[float] | None = None
+        self._frozen: dict[str, float] = {}                     # frozen scene joint -> its value
+        self._frozen_pose: dict[str, np.ndarray] = {}           # frozen scene link -> T_world_link
+        self._frozen_parts: list = []                           # the frozen parts, to load again
         try:
             self._setup_physics()
             self.floor = self._load_floor()
@@ -167,6 +170,8 @@ class World:
     # ------------------------------------------------------------------ state
     def scene_joint_state(self, name: str) -> tuple[float, float]:
         """(position, velocity) of scene joint ``name`` (rad or m, rad/s or m/s)."""
+        if name in self._frozen:
+            return self._frozen[name], 0.0
         info = self.scene_joint(name)
         if info.index < 0:                  # a fixed joint between never-moving links
             return 0.0, 0.0
@@ -175,6 +180,8 @@ class World:
 
     def reset_scene_joint(self, name: str, value: float) -> None:
         """Set scene joint ``name`` kinematically (set-up and kinematic re-checks only, never during a task)."""
+        if name in self._frozen:
+            self.thaw_parts()
         info = self.scene_joint(name)
         if info.index >= 0:
             pb.resetJointState(self._scene.joint_body[name], info.index, value, 0.0, physicsClientId=self.client)
@@ -253,7 +260,7 @@ class World:
     # ------------------------------------------------------------------ poses and velocities
     def scene_link_pose(self, link: str) -> np.ndarray:
         """T_world_link (4, 4) of scene link ``link`` (its URDF link frame)."""
-        static = self._scene.static_pose.get(link)
+        static = self._scene.static_pose.get(link, self._frozen_pose.get(link))
         if static is not None:
             return static.copy()
         return link_pose(self.client, *self._scene_link_index(link))
@@ -279,6 +286,8 @@ class World:
 
     def scene_link_velocity(self, link: str) -> tuple[np.ndarray, np.ndarray]:
         """(linear (3,) m/s, angular (3,) rad/s) world-frame velocity of scene link ``link``."""
+        if link in self._frozen_pose:
+            return np.zeros(3), np.zeros(3)
         body, index = self._scene_link_index(link)
         if index == -1:
             return np.zeros(3), np.zeros(3)
@@ -506,12 +515,149 @@ class World:
         f = self.robot_spec.finger_open if fingers_open else self.robot_spec.finger_closed
         if f:
             pb.resetJointStatesMultiDof(self.robot, self._robot.finger_index, [[v] for v in f], physicsClientId=c)
+        if any(name in self._frozen for name in scene_q):
+            self.thaw_parts()
         for name, value in scene_q.items():
             info = self.scene_joint(name)
             if info.index >= 0:
                 pb.resetJointState(self._scene.joint_body[name], info.index, float(value), physicsClientId=c)
         pb.performCollisionDetection(physicsClientId=c)
         return self.robot_contacts(min_depth=min_depth)
+
+    # ------------------------------------------------------------------ frozen parts
+    def moving_parts(self) -> dict[int, tuple[str, ...]]:
+        """body id -> the names of its movable joints, for each moving scene part that can be frozen
+        (:meth:`freeze_parts`; a part whose collision meshes were split into temporary pieces cannot)."""
+        out: dict[int, list[str]] = {body: [] for body in self._scene.parts}
+        for name, body in self._scene.joint_body.items():
+            if body in out and self._scene.joints[name].type in ("revolute", "prismatic"):
+                out[body].append(name)
+        return {body: tuple(joints) for body, joints in out.items()}
+
+    def part_joints(self, body: int) -> tuple[str, ...]:
+        """The movable scene joints of moving part ``body``."""
+        return tuple(n for n, b in self._scene.joint_body.items()
+                     if b == body and self._scene.joints[n].type in ("revolute", "prismatic"))
+
+    def moving_rest_pairs(self) -> tuple[tuple[int, int], ...]:
+        """(body a, body b) of each pair of different moving parts whose links touch at rest
+        (:attr:`rest_contacts`)."""
+        moving = set(self._scene.joint_body.values())
+        out = set()
+        for a, b, _ in self.rest_contacts:
+            ba, bb = self._scene.link_at[a][0], self._scene.link_at[b][0]
+            if ba != bb and ba in moving and bb in moving:
+                out.add((ba, bb))
+        return tuple(sorted(out))
+
+    def part_of_joint(self, name: str) -> int:
+        """The body id of the moving part holding scene joint ``name`` (-1: none, or frozen)."""
+        return self._scene.joint_body.get(name, -1)
+
+    def part_box(self, body: int, joint_values: dict[str, float] | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """(lower (3,), upper (3,)) world axis-aligned bounding box, m, of moving part ``body``'s links, now
+        or with its joints at ``joint_values`` (name -> m or rad; set kinematically and put back)."""
+        c = self.client
+        saved = {}
+        for name, value in (joint_values or {}).items():
+            info = self._scene.joints[name]
+            saved[name] = pb.getJointState(body, info.index, physicsClientId=c)[:2]
+            pb.resetJointState(body, info.index, float(value), 0.0, physicsClientId=c)
+        boxes = [pb.getAABB(body, i, physicsClientId=c) for i in range(-1, pb.getNumJoints(body, physicsClientId=c))]
+        for name, (q, qd) in saved.items():
+            pb.resetJointState(body, self._scene.joints[name].index, q, qd, physicsClientId=c)
+        lo = np.min([b[0] for b in boxes], axis=0)
+        hi = np.max([b[1] for b in boxes], axis=0)
+        return lo, hi
+
+    def part_gravity_load(self, body: int) -> dict[str, tuple[float, float, float]]:
+        """Scene joint name -> (velocity m/s or rad/s, |gravity load| N or N m holding it still, friction N or
+        N m its motor resists with) for each movable joint of moving part ``body`` now."""
+        c = self.client
+        joints = sorted((n for n, b in self._scene.joint_body.items()
+                         if b == body and self._scene.joints[n].type in ("revolute", "prismatic")),
+                        key=lambda n: self._scene.joints[n].index)
+        states = [pb.getJointState(body, self._scene.joints[n].index, physicsClientId=c) for n in joints]
+        tau = pb.calculateInverseDynamics(body, [s[0] for s in states], [0.0] * len(joints), [0.0] * len(joints),
+                                          physicsClientId=c)
+        return {n: (float(s[1]), abs(float(t)), max(self._scene.joints[n].friction, self.config.min_joint_friction))
+                for n, s, t in zip(joints, states, tau)}
+
+    def robot_boxes_along(self, qs: np.ndarray) -> np.ndarray:
+        """(n, 2, 3) the world bounding box (lower, upper), m, of every robot link together with the robot at
+        each row of ``qs`` (n, dof), fingers open; the robot's joints are put back as they were after."""
+        c, r = self.client, self._robot
+        index = list(r.q_index) + list(r.finger_index)
+        saved = pb.getJointStates(self.robot, index, physicsClientId=c)
+        links = range(-1, pb.getNumJoints(self.robot, physicsClientId=c))
+        f = [[v] for v in self.robot_spec.finger_open]
+        if f:
+            pb.resetJointStatesMultiDof(self.robot, r.finger_index, f, physicsClientId=c)
+        out = np.empty((len(qs), 2, 3))
+        for k, q in enumerate(qs):
+            pb.resetJointStatesMultiDof(self.robot, r.q_index, [[float(v)] for v in q], physicsClientId=c)
+            boxes = np.array([pb.getAABB(self.robot, i, physicsClientId=c) for i in links])
+            out[k, 0], out[k, 1] = boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
+        pb.resetJointStatesMultiDof(self.robot, index, [[s[0]] for s in saved], [[s[1]] for s in saved],
+                                    physicsClientId=c)
+        return out
+
+    def robot_levers(self) -> np.ndarray:
+        """(dof,) how far, m, any robot point can move per unit of each controlled joint: 1 per metre of a
+        prismatic joint; for a revolute one, the largest distance from its axis any point beyond it can have
+        in any configuration (bounded by the link origins' chain from the joint to each link beyond it plus
+        that link's reach from its own origin)."""
+        c, r = self.client, self._robot
+        origin = {i: (link_pose(c, self.robot, -1)[:3, 3] if i == -1 else
+                      np.asarray(pb.getLinkState(self.robot, i, computeForwardKinematics=1, physicsClientId=c)[4]))
+                  for i in r.names}
+        reach = {}
+        for i in r.names:
+            lo, hi = pb.getAABB(self.robot, i, physicsClientId=c)
+            corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
+            reach[i] = float(np.linalg.norm(corners - origin[i], axis=1).max())
+        children: dict[int, list[int]] = {}
+        for info in r.joints.values():
+            children.setdefault(r.links[info.parent_link], []).append(r.links[info.child_link])
+
+        def lever(link: int, chain: float) -> float:
+            return max([chain + reach[link]] + [lever(k, chain + float(np.linalg.norm(origin[k] - origin[link])))
+                                                for k in children.get(link, [])])
+
+        return np.array([1.0 if r.joints[n].type == "prismatic" else lever(r.links[r.joints[n].child_link], 0.0)
+                         for n in self.robot_spec.joint_names])
+
+    def freeze_parts(self, bodies) -> tuple[str, ...]:
+        """Take the moving parts ``bodies`` (ids from :meth:`moving_parts`) out of the simulation: each is
+        removed from the client with its joints' values and links' poses kept (:meth:`scene_joint_state`
+        and :meth:`scene_link_pose` report them; velocities 0) until :meth:`thaw_parts` loads it again as it
+        was. Only for parts at rest that nothing can reach (:mod:`simcheck.frozen_bodies` decides). Returns
+        the frozen joints' names."""
+        out = []
+        for body in bodies:
+            part = self._scene.parts.pop(body)
+            values = {n: self.scene_joint_state(n)[0] for n, b in self._scene.joint_body.items() if b == body}
+            for (b, index), name in self._scene.names.items():
+                if b == body:
+                    self._frozen_pose[name] = link_pose(self.client, b, index)
+            unload_part(self.client, self._scene, body)
+            self._frozen.update(values)
+            self._frozen_parts.append((part, values))
+            out.extend(values)
+        return tuple(out)
+
+    @property
+    def frozen_joints(self) -> tuple[str, ...]:
+        """The scene joints of the parts :meth:`freeze_parts` took out of the simulation (none after :meth:`thaw_parts`)."""
+        return tuple(self._frozen)
+
+    def thaw_parts(self) -> None:
+        """Load every frozen part again, its joints at the values they had, at rest (idempotent)."""
+        parts, self._frozen_parts = self._frozen_parts, []
+        for part, values in parts:
+            reload_part(self.client, self._scene, part, self.config, values)
+        self._frozen.clear()
+        self._frozen_pose.clear()
 
     # ------------------------------------------------------------------ images
     def render(self, target: np.ndarray, eye: np.ndarray, width: int = 320, height: int = 240,
