@@ -339,9 +339,9 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
             "opened", "end") to take pictures.
         sample_callback: called with no argument after every recorded sample (e.g. video frames).
         freeze_far: leave the moving scene parts nothing of the task can reach out of the simulation
-            (:mod:`simcheck.frozen_bodies`, ``config.freeze_margin``; not with ``frame_callback``: pictures show
-            the whole scene). They stay out when this returns (``world.frozen_joints``; ``world.thaw_parts()``
-            loads them again): for a world that is closed after the task.
+            (:mod:`simcheck.frozen_bodies`, ``config.freeze_margin``; pictures still show them:
+            :meth:`simcheck.world.World.render`). They stay out when this returns (``world.frozen_joints``;
+            ``world.thaw_parts()`` loads them again): for a world that is closed after the task.
     """
     t0 = time.perf_counter()
     robot = world.robot_spec
@@ -358,7 +358,7 @@ def execute_task(world: World, plan: PlanResult, config: PhysicsConfig = DEFAULT
     notes: list[str] = []
     if reset_robot:
         world.reset_robot(plan.segments[0].q[0], fingers_open=True)
-    if freeze_far and frame_callback is None and config.freeze_margin > 0:
+    if freeze_far and config.freeze_margin > 0:
         far, weights = far_parts(world, plan, config.freeze_margin)
         if far:
             frozen = world.freeze_parts(far)

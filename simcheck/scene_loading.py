@@ -39,7 +39,7 @@ from simcheck.errors import SceneLoadError
 from simcheck.joint_table import JointInfo
 from simcheck.scene_bodies import ANCHOR, scene_bodies
 
-__all__ = ["LoadedScene", "load_scene", "reload_part", "unload_part"]
+__all__ = ["LoadedScene", "load_scene", "reload_part", "unload_part", "picture_part"]
 
 log = logging.getLogger(__name__)
 
@@ -262,3 +262,17 @@ def _filter_initial_overlaps(client: int, scene_urdf: Path, names: dict[tuple[in
             log.info("scene %s: links %s and %s touch at rest (%.1f mm): they do not block each other",
                      scene_urdf, a, b, depth * 1e3)
     return disabled, resting
+
+
+def picture_part(client: int, part: "_Body", joint_values: dict[str, float]) -> int:
+    """Load ``part`` for pictures only: its visual shapes, no collision shape (nothing collides with it, nothing
+    of the simulation sees it), joints at ``joint_values`` (name -> m or rad). Returns its body id; remove it
+    (``pb.removeBody``) before the next step, the last loaded first."""
+    with tempfile.TemporaryDirectory(prefix="partscene_part_") as tmp:
+        body = _load_part(client, Path(tmp) / "part.urdf", part,
+                          pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_IGNORE_COLLISION_SHAPES, "a scene part's picture")
+    joints, _ = body_joint_table(client, body)
+    for name, info in joints.items():
+        if name in joint_values and info.type in ("revolute", "prismatic"):
+            pb.resetJointState(body, info.index, float(joint_values[name]), 0.0, physicsClientId=client)
+    return body

@@ -39,7 +39,7 @@ from simcheck.joint_table import JointInfo
 from simcheck.rendering import render
 from simcheck.robot_binding import SimRobot
 from simcheck.robot_loading import LoadedRobot, load_robot
-from simcheck.scene_loading import load_scene, reload_part, unload_part
+from simcheck.scene_loading import load_scene, picture_part, reload_part, unload_part
 
 __all__ = ["World", "JointInfo", "ContactPoint", "FLOOR", "display_available", "pybullet_version"]
 
@@ -91,6 +91,7 @@ class World:
         self._frozen: dict[str, float] = {}                     # frozen scene joint -> its value
         self._frozen_pose: dict[str, np.ndarray] = {}           # frozen scene link -> T_world_link
         self._frozen_parts: list = []                           # the frozen parts, to load again
+        self._visuals = visuals or gui
         try:
             self._setup_physics()
             self.floor = self._load_floor()
@@ -578,8 +579,11 @@ class World:
                          if b == body and self._scene.joints[n].type in ("revolute", "prismatic")),
                         key=lambda n: self._scene.joints[n].index)
         states = [pb.getJointState(body, self._scene.joints[n].index, physicsClientId=c) for n in joints]
-        tau = pb.calculateInverseDynamics(body, [s[0] for s in states], [0.0] * len(joints), [0.0] * len(joints),
-                                          physicsClientId=c)
+        try:
+            tau = pb.calculateInverseDynamics(body, [s[0] for s in states], [0.0] * len(joints),
+                                              [0.0] * len(joints), physicsClientId=c)
+        except pb.error:                    # a joint PyBullet's inverse dynamics cannot take: load unknown
+            tau = [float("inf")] * len(joints)
         return {n: (float(s[1]), abs(float(t)), max(self._scene.joints[n].friction, self.config.min_joint_friction))
                 for n, s, t in zip(joints, states, tau)}
 
@@ -663,5 +667,12 @@ class World:
     def render(self, target: np.ndarray, eye: np.ndarray, width: int = 320, height: int = 240,
                fov_deg: float = 60.0) -> np.ndarray:
         """(height, width, 3) uint8 RGB image from ``eye`` (3,) looking at ``target`` (3,), world frame, z up
-        (:func:`simcheck.rendering.render`)."""
-        return render(self.client, target, eye, width, height, fov_deg)
+        (:func:`simcheck.rendering.render`). Frozen parts (:meth:`freeze_parts`) are in the picture: each is
+        loaded as visual shapes only for it and removed after, the last first (the simulation's arrays end as
+        they were)."""
+        shown = [picture_part(self.client, part, values) for part, values in self._frozen_parts] if self._visuals else []
+        try:
+            return render(self.client, target, eye, width, height, fov_deg)
+        finally:
+            for body in reversed(shown):
+                pb.removeBody(body, physicsClientId=self.client)

@@ -102,3 +102,32 @@ def test_path_samples_leave_no_row_farther_than_a_step_from_the_last_measured_on
     for i in range(len(q)):
         last = max(r for r in rows if r <= i)
         assert run[i] - run[last] < 0.1 + 1e-12
+
+
+def test_a_far_part_gravity_could_move_is_not_frozen(two_cabinets):
+    with World(two_cabinets, ROBOT, visuals=False) as w:
+        plan = drawer_plan()
+        w.reset_robot(plan.segments[0].q[0])
+        pb.setGravity(3.0, 0.0, -9.81, physicsClientId=w.client)      # 3 m/s^2 along the drawers' axis
+        far, _ = far_parts(w, plan, DEFAULT_PHYSICS.freeze_margin)
+        assert w.part_of_joint(FAR_DRAWER) not in far
+
+
+def test_pictures_show_frozen_parts_and_taking_them_changes_no_physics(two_cabinets):
+    plan = drawer_plan()
+    eye, target = np.array([1.5, 4.5, 1.5]), np.array([0.0, 3.0, 0.4])      # looking at the far cabinet
+    runs, pictures = [], []
+    for pictured in (False, True):
+        with World(two_cabinets, ROBOT) as w:
+            w.reset_scene_joint(FAR_DRAWER, 0.2)
+            w.reset_robot(plan.segments[0].q[0])
+            whole = w.render(target, eye, 64, 48)
+            shot = (lambda label: pictures.append((whole, w.render(target, eye, 64, 48)))) if pictured else None
+            runs.append(execute_task(w, plan, frame_callback=shot, freeze_far=True))
+            assert FAR_DRAWER in w.frozen_joints
+    plain, with_pictures = runs
+    assert np.array_equal(plain.object_q, with_pictures.object_q)
+    assert np.array_equal(plain.robot_q, with_pictures.robot_q)
+    assert np.array_equal(plain.grasp_force, with_pictures.grasp_force)
+    whole, frozen = pictures[0]                                   # the start frame: nothing has moved yet
+    assert np.abs(whole.astype(int) - frozen.astype(int)).mean() < 0.1      # 1.25 without the frozen cabinet
