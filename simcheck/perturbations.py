@@ -125,7 +125,7 @@ def sample_perturbation(index: int, seed: int, joint: str, joint_type: str, urdf
     gain = rng.uniform(*robot.tracking_gain)
     reperceive = rng.standard_normal(3) * [robot.reperception_m, robot.reperception_m,
                                            np.radians(robot.reperception_yaw_deg)]
-    other_side = rng.random() < 0.5
+    other_side = rng.random() < 0.5 and centre is not None and centre.other_origin is not None
     if mode == "physics":
         return Perturbation(int(index), joint, tuple(a_urdf), tuple(o_urdf), float(urdf_upper), 0.0, 0.0,
                             float(friction), float(damping), float(mass), float(handle_friction), (0.0, 0.0, 0.0),
@@ -138,7 +138,6 @@ def sample_perturbation(index: int, seed: int, joint: str, joint_type: str, urdf
         if a_c @ a_urdf < 0:
             a_c = -a_c
         o_c, u_c = np.asarray(centre.origin, dtype=np.float64), float(centre.upper)
-        other_side = other_side and centre.other_origin is not None
         if other_side:               # the same line at the other edge, reversed: a positive angle still opens
             a_c, o_c = -a_c, np.asarray(centre.other_origin, dtype=np.float64)
     u1, u2 = _perpendicular_basis(a_c)

@@ -63,6 +63,11 @@ def test_half_of_the_worlds_are_hinged_at_the_other_edge_about_the_reversed_axis
                                 DEFAULT_PHYSICS_RANGES, RobotErrors())
     assert all(p.hinge_side == "estimated" for p in same)
     assert [p.base_error for p in same] == [p.base_error for p in perts]
+    # nor without a graph.json (no centre: the URDF's own joint), a drawer's either
+    for jtype in ("revolute", "prismatic"):
+        alone = sample_perturbations(40, 0, DOOR, jtype, j.axis_world, j.origin_world, j.upper, None, spreads,
+                                     DEFAULT_PHYSICS_RANGES, RobotErrors())
+        assert all(p.hinge_side == "estimated" for p in alone)
 
 
 def test_a_side_undecided_that_is_not_a_boolean_is_named(tmp_path):
