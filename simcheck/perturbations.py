@@ -16,7 +16,9 @@ The task's joint (world frame, at q = 0):
   range's RMS about its 100 deg estimate -- it has no tails below it); kept at least a tenth of the centre's.
 
 Physics: uniform in :class:`PhysicsRanges`. Robot: base position error N(0, base_xy_m²) along x and y,
-heading N(0, base_yaw_deg²), perceived handle position N(0, handle_m²) per axis, position gain factor
+heading N(0, base_yaw_deg²), perceived handle position N(0, handle_m²) per axis (then kept in the plane of
+the part's front, :func:`in_front_plane`: a depth camera's error moves the perceived front with the handle, so
+it does not change the bar's standoff from the front -- recon's handle geometry), position gain factor
 uniform in ``tracking_gain``; the re-perception error of the guarded approach N(0, reperception_m²) along x
 and y and N(0, reperception_yaw_deg²) in heading (zero without ``guarded_approach``). Last, the hinge side:
 a door whose side recon left undecided (:attr:`JointCentre.other_origin`) is hinged at its other edge with
@@ -34,7 +36,7 @@ import numpy as np
 
 from simcheck.robust_spreads import JointCentre, JointSpreads, PhysicsRanges, RobotErrors
 
-__all__ = ["Perturbation", "sample_perturbation", "sample_perturbations", "MODES"]
+__all__ = ["Perturbation", "sample_perturbation", "sample_perturbations", "front_normal", "in_front_plane", "MODES"]
 
 MODES = ("scan", "physics")
 
@@ -163,3 +165,27 @@ def sample_perturbation(index: int, seed: int, joint: str, joint_type: str, urdf
 def sample_perturbations(n: int, seed: int, *args, **kwargs) -> tuple[Perturbation, ...]:
     """Samples 0 .. n - 1 of :func:`sample_perturbation` (same further arguments)."""
     return tuple(sample_perturbation(i, seed, *args, **kwargs) for i in range(int(n)))
+
+
+def front_normal(joint_type: str, axis, origin, handle) -> np.ndarray | None:
+    """(3,) unit normal, world, of the moving part's front at q = 0 where its handle stands: a drawer's axis;
+    a door's direction perpendicular to its hinge axis and to the hinge-to-handle lever. ``axis`` (3,),
+    ``origin`` (3,) m: the joint's world axis and a point on it; ``handle`` (3,) m: the handle as planned.
+    None when it is undefined (a handle on the hinge line, a zero axis)."""
+    a = np.asarray(axis, dtype=np.float64)
+    if np.linalg.norm(a) < 1e-12:
+        return None
+    a = a / np.linalg.norm(a)
+    if joint_type == "prismatic":
+        return a
+    lever = np.asarray(handle, dtype=np.float64) - np.asarray(origin, dtype=np.float64)
+    n = np.cross(a, lever - (lever @ a) * a)
+    return None if np.linalg.norm(n) < 1e-9 else n / np.linalg.norm(n)
+
+
+def in_front_plane(shift, normal) -> tuple[float, float, float]:
+    """``shift`` (3,) m with its component along the unit ``normal`` (3,) removed (``normal`` None: as is)."""
+    s = np.asarray(shift, dtype=np.float64)
+    if normal is not None:
+        s = s - (s @ normal) * np.asarray(normal, dtype=np.float64)
+    return tuple(map(float, s))

@@ -28,10 +28,10 @@ from pathlib import Path
 
 import numpy as np
 
-from planners.task import parse_tasks
+from planners.task import SEGMENT_NAMES, parse_tasks
 from scenes.description import file_stem, read_scene_floor
 from scenes.outcome import Outcome
-from simcheck.perturbations import Perturbation, sample_perturbation
+from simcheck.perturbations import Perturbation, front_normal, in_front_plane, sample_perturbation
 from simcheck.perturbed_scene import base_error_inverse, write_perturbed_scene
 from simcheck.robust_correction import guarded_plan
 from simcheck.robust_engine import choose_engine, run_samples
@@ -64,6 +64,12 @@ def _pivot_xy(plan) -> tuple[float, float]:
     seg = next((s for s in plan.segments if s.name == plan.opening_segment), plan.segments[0])
     q = np.asarray(seg.q, dtype=float)
     return float(q[0, 0]), float(q[0, 1])
+
+
+def _handle_point(plan) -> np.ndarray:
+    """(3,) world, where the plan grasps: the grasp segment's last tool position (else its last segment's)."""
+    seg = next((s for s in plan.segments if s.name == SEGMENT_NAMES[1]), plan.segments[-1])
+    return np.asarray(seg.T_world_tool[-1][:3, 3], dtype=float)
 
 
 def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics, criteria, pivot,
@@ -169,6 +175,8 @@ def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, 
         indices = [replay_sample] if replay_sample is not None else list(range(robust))
         perts = [sample_perturbation(i, seed, tc.joint, ref.type, ref.axis_world, ref.origin_world, ref.upper, centre,
                                      jspreads, spreads_cfg.physics, spreads_cfg.robot, mode) for i in indices]
+        normal = front_normal(ref.type, ref.axis_world, ref.origin_world, _handle_point(plan))
+        perts = [dataclasses.replace(p, handle_shift=in_front_plane(p.handle_shift, normal)) for p in perts]
         # measured as plain certify does (with --against too): the estimate's request along its opening
         # direction in the world, its axis reversed for a negative amount (a reference of the other sign
         # convention is matched by direction, not by the sign of its joint value)

@@ -80,7 +80,7 @@ class RobotErrors:
     base_xy_m : σ (m) of the base's position error along x and along y (where it is vs where it thinks);
         0.014 per axis is an RMS distance of 2 cm
     base_yaw_deg : σ (deg) of its heading error
-    handle_m : σ (m) per axis of the handle position as perceived
+    handle_m : σ (m) per axis of the handle position as perceived (kept in the plane of the part's front)
     tracking_gain : uniform range of the factor on the arm's position-control gain (controller tracking)
     guarded_approach : the robot re-perceives the handle once it stands at its stand pose and corrects the
         rest of its path for its own base error (:mod:`simcheck.robust_correction`); False: the plan is
