@@ -20,10 +20,11 @@ heading N(0, base_yaw_deg²), perceived handle position N(0, handle_m²) per axi
 the part's front, :func:`in_front_plane`: a depth camera's error moves the perceived front with the handle, so
 it does not change the bar's standoff from the front -- recon's handle geometry), position gain factor
 uniform in ``tracking_gain``; the re-perception error of the guarded approach N(0, reperception_m²) along x
-and y and N(0, reperception_yaw_deg²) in heading (zero without ``guarded_approach``). Last, the hinge side:
+and y and N(0, reperception_yaw_deg²) in heading (none without ``guarded_approach``). Then the hinge side:
 a door whose side recon left undecided (:attr:`JointCentre.other_origin`) is hinged at its other edge with
-probability 1/2, the perturbations above applied about that hinge (``hinge_side`` "other"). The draws
-after the joint's come in a fixed order, each of a sample independent of the later ones. ``mode="physics"`` (robust ``--against`` a reference) leaves the joint and
+probability 1/2, the perturbations above applied about that hinge (``hinge_side`` "other"). Last, the
+re-perception's vertical error N(0, reperception_m²). The draws after the joint's come in a fixed order, each
+of a sample independent of the later ones. ``mode="physics"`` (robust ``--against`` a reference) leaves the joint and
 the robot as they are and samples the physics ranges only.
 """
 
@@ -52,7 +53,7 @@ class Perturbation:
     handle_friction : the handles' lateral friction coefficient; base_error : (dx m, dy m, dyaw rad) of
     the robot's base (where it is minus where it thinks); handle_shift : (3,) m, world, the handle's true
     position minus the perceived one; tracking_gain : factor on the arm's position gain; reperception :
-    (dx m, dy m, dyaw rad), world, the error of the robot's pose relative to the handle left after the
+    (dx m, dy m, dyaw rad, dz m), world, the error of the robot's pose relative to the handle left after the
     guarded approach's correction (:mod:`simcheck.robust_correction`), or None: no correction (the plan is
     replayed open loop); hinge_side : "estimated", or "other" when the door is hinged at its other edge
     (its side undecided by the scan).
@@ -72,7 +73,7 @@ class Perturbation:
     base_error: tuple[float, float, float]
     handle_shift: tuple[float, float, float]
     tracking_gain: float
-    reperception: tuple[float, float, float] | None = None
+    reperception: tuple[float, float, float, float] | None = None
     hinge_side: str = "estimated"
 
     def to_dict(self) -> dict:
@@ -128,6 +129,7 @@ def sample_perturbation(index: int, seed: int, joint: str, joint_type: str, urdf
     reperceive = rng.standard_normal(3) * [robot.reperception_m, robot.reperception_m,
                                            np.radians(robot.reperception_yaw_deg)]
     other_side = rng.random() < 0.5 and centre is not None and centre.other_origin is not None
+    reperceive_z = rng.standard_normal() * robot.reperception_m
     if mode == "physics":
         return Perturbation(int(index), joint, tuple(a_urdf), tuple(o_urdf), float(urdf_upper), 0.0, 0.0,
                             float(friction), float(damping), float(mass), float(handle_friction), (0.0, 0.0, 0.0),
@@ -158,7 +160,7 @@ def sample_perturbation(index: int, seed: int, joint: str, joint_type: str, urdf
     return Perturbation(int(index), joint, tuple(map(float, axis)), tuple(map(float, origin)), float(upper), ang, off,
                         float(friction), float(damping), float(mass), float(handle_friction),
                         tuple(map(float, base)), tuple(map(float, handle)), float(gain),
-                        tuple(map(float, reperceive)) if robot.guarded_approach else None,
+                        (*map(float, reperceive), float(reperceive_z)) if robot.guarded_approach else None,
                         "other" if other_side else "estimated")
 
 

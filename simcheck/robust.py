@@ -10,8 +10,8 @@ a Ray task (:mod:`simcheck.robust_engine`), and certify only when the one-sided 
 * Sample i is :func:`simcheck.perturbations.sample_perturbation` (seed, i) written as a URDF by
   :mod:`simcheck.perturbed_scene` (from the estimate; with ``against``, from the reference, physics ranges
   only), executed with the plan (the arm's position gain scaled by the sample's tracking factor; with the
-  guarded approach, the rest of the plan corrected after the approach for the robot's base error as
-  re-perceived: :mod:`simcheck.robust_correction`) and judged by the same rollout criteria. A sample
+  guarded approach, the rest of the plan corrected after the approach for the robot's base error and the
+  handle's offset as re-perceived: :mod:`simcheck.robust_correction`) and judged by the same rollout criteria. A sample
   succeeds when every criterion passes.
 * The task is certified when the nominal run is and the bound reaches ``min_success``; its certificate
   gets the ``"robust"`` block (:func:`simcheck.robust_verdict.robust_block`).
@@ -40,7 +40,7 @@ from simcheck.spreads_file import load_spreads
 from simcheck.robust_verdict import CONFIDENCE, SampleResult, robust_block, robust_outcome
 from simcheck.scene_joints import read_scene_joints
 
-__all__ = ["certify_robustly", "run_sample"]
+__all__ = ["certify_robustly", "run_sample", "sample_plan"]
 
 log = logging.getLogger(__name__)
 
@@ -75,7 +75,8 @@ def _handle_point(plan) -> np.ndarray:
 def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics, criteria, pivot,
                workdir: str | None = None, out: str | None = None, images: bool = False, video: bool = False,
                opening_type: str = "", opening_axis=None) -> SampleResult:
-    """Execute ``plan`` in the world of perturbation ``p`` (built from scene ``src``) and judge it.
+    """Execute ``plan`` in the world of perturbation ``p`` (built from scene ``src``) and judge it (``plan``
+    as the robot runs it in that world: with the guarded approach's correction, :func:`sample_plan`).
 
     Runs in a worker process (the world is created and closed here). ``workdir``: where the sampled world's
     URDF is written (None: a temporary folder of this process, removed after). ``out``: a folder for the rollout /
@@ -93,8 +94,6 @@ def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics
             return run_sample(src, p, plan, requested, robot, physics, criteria, pivot, tmp, out, images, video,
                               opening_type, opening_axis)
     urdf = write_perturbed_scene(src, p, Path(workdir) / f"sample{p.index}.urdf", pivot)
-    if p.reperception is not None:
-        plan = guarded_plan(plan, p.base_error, p.reperception, pivot, p.handle_shift)
     if opening_axis is not None:
         opening_axis = base_error_inverse(p.base_error, pivot)[:3, :3] @ np.asarray(opening_axis, dtype=float)
     phys = dataclasses.replace(physics, robot_position_gain=physics.robot_position_gain * p.tracking_gain)
@@ -122,6 +121,25 @@ def run_sample(src: str, p: Perturbation, plan, requested: float, robot, physics
     failed = [c for c in crit if not c.passed]
     reason = "; ".join(f"{c.name}: {c.detail}" for c in failed) if failed else "every criterion passed"
     return SampleResult(p, Outcome.FAILED if failed else Outcome.CERTIFIED, reason, {c.name: c.margin for c in crit})
+
+
+def sample_plan(plan, p: Perturbation, pivot, kinematics=None):
+    """``plan`` as the robot runs it in the world of ``p``: with the guarded approach's correction when ``p``
+    has a re-perception (:func:`simcheck.robust_correction.guarded_plan`; ``kinematics``: the robot's
+    :class:`planners.pin_world.RobotKinematics` on the scene's floor, which takes up the handle's vertical
+    offset with the arm; None: not), else as planned."""
+    if p.reperception is None:
+        return plan
+    return guarded_plan(plan, p.base_error, p.reperception, pivot, p.handle_shift, kinematics)
+
+
+def _kinematics(robot, floor):
+    """The planning robot's kinematics on ``floor`` (cached by the planner), or None for a robot that is not a
+    :class:`planners.robot.RobotSpec` (a given plan's robot: its vertical offsets stay uncorrected)."""
+    from planners.plan import robot_kinematics
+    from planners.robot import RobotSpec
+
+    return robot_kinematics(robot, floor) if isinstance(robot, RobotSpec) else None
 
 
 def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, replay_sample: int | None,
@@ -186,9 +204,10 @@ def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, 
         opening_axis = (1.0 if plan.amount >= 0 else -1.0) * np.asarray(est.axis_world, dtype=float)
         pivot = _pivot_xy(plan)
         t1 = time.perf_counter()
+        kin = _kinematics(robot, read_scene_floor(source)) if any(p.reperception for p in perts) else None
         with tempfile.TemporaryDirectory(prefix="partscene_robust_") as tmp:
-            args = [(str(source), p, plan, requested, sim_robot, physics, criteria, pivot, tmp, None, False, False,
-                     opening_type, opening_axis) for p in perts]
+            args = [(str(source), p, sample_plan(plan, p, pivot, kin), requested, sim_robot, physics, criteria, pivot,
+                     tmp, None, False, False, opening_type, opening_axis) for p in perts]
             if replay_sample is not None:
                 results = [run_sample(*args[0][:9], out=None if out is None else str(out), images=images,
                                       video=video, opening_type=opening_type, opening_axis=opening_axis)]

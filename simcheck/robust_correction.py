@@ -15,12 +15,19 @@ The model (pure numpy, :func:`guarded_plan`):
   vertical through the handle (the grasp segment's last tool position), then a shift by
   ``(reperception[0], reperception[1])`` m. After the correction the robot stands relative to the scene
   at ``N @ S`` times where the plan put it: the base error and the handle's horizontal offset are gone up
-  to the re-perception error; the handle's vertical offset stays (a planar base move cannot take it up).
+  to the re-perception error.
+* the handle's vertical offset (``handle_shift`` z) as re-perceived -- off by the re-perception's vertical
+  error ``reperception[3]`` -- is taken up by the arm (a planar base move cannot): with ``kinematics``
+  (:class:`planners.pin_world.RobotKinematics`), every configuration from the appended waypoint on is
+  re-solved by inverse kinematics (the arm joints after the torso lift, seeded at the planned
+  configuration, joint limits kept) so that its tool pose is the planned one raised by that offset; the
+  base and the lift keep their planned values. Without ``kinematics`` it stays uncorrected.
 * the correction is a rigid transform of the remaining path, executed with physics: one waypoint is
   appended to the approach segment, the approach's last configuration moved by ``C`` (the base drives
-  those 1-3 cm with the arm held, gripper open); every later segment's configurations are moved by ``C``
-  (the planar base joints (x, y, yaw), i.e. the arm path rigidly in the corrected base frame) and its
-  planned tool poses ``T_world_tool`` by ``C``. Nothing is teleported.
+  those 1-3 cm, the arm only takes up the vertical offset, gripper open); every later segment's
+  configurations are moved by ``C`` (the planar base joints (x, y, yaw), i.e. the arm path rigidly in the
+  corrected base frame, then raised as above) and its planned tool poses ``T_world_tool`` by ``C`` and the
+  vertical offset. Nothing is teleported.
 * what the robot cannot know is not corrected: the opening motion stays the one planned about the
   estimate's joint (hinge line, axis, travel), moved rigidly with the grasp; the sampled world's joint is
   where the scan's uncertainty put it.
@@ -32,6 +39,7 @@ import dataclasses
 
 import numpy as np
 
+from planners.ik import solve_ik
 from planners.task import SEGMENT_NAMES, PlanResult
 from simcheck.perturbed_scene import base_error_inverse
 
@@ -74,24 +82,53 @@ def _moved_base(q: np.ndarray, C: np.ndarray) -> np.ndarray:
     return q
 
 
-def guarded_plan(plan: PlanResult, base_error, reperception, pivot_xy, handle_shift=(0.0, 0.0, 0.0)
-                 ) -> PlanResult:
+def _raised(q: np.ndarray, dz: float, kinematics) -> np.ndarray:
+    """Copy of ``q`` (n, dof) whose arm joints after the torso lift are re-solved so that each row's tool pose
+    is its own raised by ``dz`` m (world z), orientation kept; base and lift columns unchanged. Each row is
+    solved from itself plus the previous row's change (the nearest solution, continuous along the path;
+    within the joint limits: where the arm cannot reach, the nearest pose it gets to)."""
+    q = np.array(q, dtype=np.float64)
+    if dz == 0.0 or kinematics is None:
+        return q
+    active = np.zeros(q.shape[1], bool)
+    active[len(kinematics.spec.base_joints):] = True
+    active[kinematics.lift_cols] = False
+    change = np.zeros(q.shape[1])
+    for i, row in enumerate(q):
+        T = kinematics.tool_pose(row)
+        T[2, 3] += dz
+        seed = np.clip(row + change, kinematics.lower, kinematics.upper)
+        q[i] = solve_ik(kinematics.tool_pose_jacobian, T, seed, kinematics.lower, kinematics.upper, active,
+                        pos_tol=1e-4, rot_tol=1e-3).q
+        change = q[i] - row
+    return q
+
+
+def guarded_plan(plan: PlanResult, base_error, reperception, pivot_xy, handle_shift=(0.0, 0.0, 0.0),
+                 kinematics=None) -> PlanResult:
     """``plan`` with the guarded approach's correction (module docstring; arguments as
-    :func:`correction_transform`); the plan itself when it has no approach segment before its grasp segment
-    (nothing to correct after) or nothing to correct."""
+    :func:`correction_transform`; ``reperception`` may carry a 4th value, its vertical error in m;
+    ``kinematics``: the robot's :class:`planners.pin_world.RobotKinematics` on the scene's floor, None: the
+    vertical offset is not corrected); the plan itself when it has no approach segment before its grasp
+    segment (nothing to correct after) or nothing to correct."""
     names = [s.name for s in plan.segments]
     if _GRASP not in names or names.index(_GRASP) == 0 or names[names.index(_GRASP) - 1] != _APPROACH:
         return plan
-    if not any(abs(float(v)) > 0.0 for v in (*base_error, *reperception, *handle_shift[:2])):
+    dz = 0.0 if kinematics is None else float(handle_shift[2]) + float((*reperception, 0.0)[3])
+    if not any(abs(float(v)) > 0.0 for v in (*base_error, *reperception[:3], *handle_shift[:2], dz)):
         return plan
     k = names.index(_GRASP)
     handle_xy = plan.segments[k].T_world_tool[-1][:2, 3]
     C = correction_transform(base_error, reperception, pivot_xy, handle_xy, handle_shift)
+    Cz = C.copy()
+    Cz[2, 3] += dz
     a = plan.segments[k - 1]
     approach = dataclasses.replace(
-        a, q=np.vstack([a.q, _moved_base(a.q[-1:], C)]), object_q=np.append(a.object_q, a.object_q[-1]),
-        T_world_tool=np.concatenate([a.T_world_tool, (C @ a.T_world_tool[-1])[None]]),
+        a, q=np.vstack([a.q, _raised(_moved_base(a.q[-1:], C), dz, kinematics)]),
+        object_q=np.append(a.object_q, a.object_q[-1]),
+        T_world_tool=np.concatenate([a.T_world_tool, (Cz @ a.T_world_tool[-1])[None]]),
         t=None if a.t is None else np.append(a.t, a.t[-1] + 1.0))
-    later = [dataclasses.replace(s, q=_moved_base(s.q, C), T_world_tool=np.einsum("ij,njk->nik", C, s.T_world_tool))
+    later = [dataclasses.replace(s, q=_raised(_moved_base(s.q, C), dz, kinematics),
+                                 T_world_tool=np.einsum("ij,njk->nik", Cz, s.T_world_tool))
              for s in plan.segments[k:]]
     return dataclasses.replace(plan, segments=(*plan.segments[:k - 1], approach, *later))

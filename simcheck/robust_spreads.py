@@ -85,8 +85,9 @@ class RobotErrors:
     guarded_approach : the robot re-perceives the handle once it stands at its stand pose and corrects the
         rest of its path for its own base error (:mod:`simcheck.robust_correction`); False: the plan is
         replayed open loop, the base error uncorrected
-    reperception_m : σ (m) per horizontal axis of that re-perception's error (where the robot then thinks
-        the handle is, relative to itself, minus where it is)
+    reperception_m : σ (m) per axis (x, y and vertical) of that re-perception's error (where the robot then
+        thinks the handle is, relative to itself, minus where it is); the vertical offset it finds is taken up
+        by the arm
     reperception_yaw_deg : σ (deg) of the heading error of that re-perception (the front's face normal)
     """
 

@@ -14,7 +14,7 @@ Every key is optional; a key left out keeps its default (:data:`simcheck.robust_
       handle_m: 0.005               # sigma (m) per axis of the handle position as perceived
       tracking_gain: [0.7, 1.3]     # uniform range of the factor on the arm's position gain (> 0)
       guarded_approach: true        # re-perceive the handle at the stand pose and correct the rest of the path
-      reperception_m: 0.003         # sigma (m) per horizontal axis of that re-perception
+      reperception_m: 0.003         # sigma (m) per axis (x, y, z) of that re-perception
       reperception_yaw_deg: 0.5     # sigma (deg) of its heading
     joint_defaults:                 # the task joint's RMS spreads without recon's graph.json
       prismatic: {axis_deg: 1.0, origin_m: 0.005, upper: 0.02}
@@ -54,7 +54,7 @@ _DOC = {
     "robot.handle_m": "sigma (m) per axis of the handle position as perceived",
     "robot.tracking_gain": "uniform range of the factor on the arm's position gain (> 0)",
     "robot.guarded_approach": "re-perceive the handle at the stand pose and correct the rest of the path",
-    "robot.reperception_m": "sigma (m) per horizontal axis of that re-perception",
+    "robot.reperception_m": "sigma (m) per axis (x, y, z) of that re-perception",
     "robot.reperception_yaw_deg": "sigma (deg) of its heading",
     "joint_defaults": "the task joint's RMS spreads without recon's graph.json (axis deg, origin m, upper m or rad)",
 }
