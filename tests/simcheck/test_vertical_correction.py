@@ -60,8 +60,8 @@ def _run(scene: Path, task: str, p: Perturbation, corrected: bool):
     est = read_scene_joints(scene)[t.joint]
     pivot = _pivot_xy(plan)
     run = sample_plan(plan, p, pivot, robot_kinematics(SPEC) if corrected else None)
-    return run_sample(str(scene), p, run, abs(plan.amount), sim_robot_from_spec(SPEC), PhysicsConfig(), CriteriaConfig(),
-                      pivot, opening_type=est.type.value,
+    return run_sample(str(scene), p, run, abs(plan.amount), sim_robot_from_spec(SPEC), PhysicsConfig(),
+                      CriteriaConfig(), pivot, opening_type=est.type.value,
                       opening_axis=np.sign(plan.amount) * np.asarray(est.axis_world, dtype=float))
 
 
