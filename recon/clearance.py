@@ -10,8 +10,10 @@ far from everything around it.
 
 Who yields, for each overlapping pair of shapes on two links:
     a fitted wall        moves back (away from the room) until it clears the other shape;
-    moving vs static     the moving part's shape (a door/drawer front thinned from behind, a drawer
-                         box shortened) — the face the camera saw stays where it was measured;
+    moving vs static     the moving part's shape, through its thickness only (a door/drawer front
+                         thinned from behind: the faces the camera saw stay where they were measured);
+                         when that cannot clear it, the static shape (a carcass board cut back at its
+                         edge behind an overlay front); only then the moving shape along any axis;
     same rigid group     the tree child (a leg under its seat, a handle on its front), else the smaller;
     two moving groups    the one hanging from the other, else the smaller.
 A shape yields by moving one face inward along one of its own axes: the side and axis that need the
@@ -143,6 +145,17 @@ def _yielders(a: SceneShape, b: SceneShape, groups_parent: dict) -> list[tuple[S
     return [(first, second)] if second.wall else [(first, second), (second, first)]
 
 
+def _attempts(order: list[tuple[SceneShape, SceneShape]]) -> list[tuple[SceneShape, SceneShape, tuple[int, ...]]]:
+    """[(yielding, other, axes it may be cut along), ...]: a moving shape against a static one is first only
+    thinned through its thickness (a front from behind: its seen faces stay where they were measured), then
+    the static shape is cut, and only then the moving one along any axis."""
+    every = (0, 1, 2)
+    if len(order) == 2 and order[0][0].group is not None and order[0][1].group is None:
+        y, o = order[0]
+        return [(y, o, (int(np.argmin(y.prim.size)),)), (o, y, every), (y, o, every)]
+    return [(y, o, every) for y, o in order]
+
+
 def _hangs_from(g: tuple, h: tuple, groups_parent: dict) -> bool:
     """Whether movable group ``g`` hangs (directly or not) from movable group ``h``."""
     g = groups_parent.get(g)
@@ -153,16 +166,18 @@ def _hangs_from(g: tuple, h: tuple, groups_parent: dict) -> bool:
     return False
 
 
-def _cut(prim: Primitive, other: Primitive, gap: float, cfg: ClearanceConfig) -> tuple[Primitive, float, str] | None:
+def _cut(prim: Primitive, other: Primitive, gap: float, cfg: ClearanceConfig,
+         axes: tuple[int, ...] = (0, 1, 2)) -> tuple[Primitive, float, str] | None:
     """``prim`` with one face moved inward along one of its axes so that its projection on that axis
     clears ``other``'s by ``gap``: the smallest such cut that keeps ``min_keep_fraction`` of the extent.
     A cylinder cut across its axis (a sphere cut along any axis) loses that much diameter and moves
     its centre half of it away from ``other``.
+    ``axes``: the shape's axes a cut may move a face along.
     Returns (cut shape, cut depth m, "+x" / "-y" ...: the face moved), or None."""
     R, c, h = _frame(prim)
     Ro, co, ho = _frame(other)
     best = None
-    for k in range(3):
+    for k in axes:
         u = R[:, k]
         r_o = _radius(Ro, ho, u)
         lo_o, hi_o = float(co @ u) - r_o, float(co @ u) + r_o
@@ -231,8 +246,9 @@ def cleared_scene(objects, walls, cfg: ClearanceConfig,
             if separation(a.prim, b.prim) >= gap - cfg.tolerance:
                 continue
             index = {id(a): i, id(b): j}
-            for y, o in _yielders(a, b, groups_parent):
-                res = (_moved_back if y.wall and not o.wall else _cut)(y.prim, o.prim, gap, cfg)
+            for y, o, axes in _attempts(_yielders(a, b, groups_parent)):
+                res = (_moved_back(y.prim, o.prim, gap, cfg) if y.wall and not o.wall
+                       else _cut(y.prim, o.prim, gap, cfg, axes))
                 if res is not None:
                     k = index[id(y)]
                     shapes[k] = dataclasses.replace(y, prim=res[0])

@@ -121,3 +121,23 @@ def test_a_cylinder_is_cut_across_its_axis_on_the_side_facing_the_other_shape():
     cut = new.part(2).solids[0]
     assert cut.size[0] == pytest.approx(0.03) and cut.size[2] == pytest.approx(1.0)
     assert cut.center[1] == pytest.approx(0.055) and separation(panel, cut) >= -1e-9
+
+
+def test_an_overlay_door_over_its_carcass_top_board_keeps_its_top_and_the_board_is_cut_back():
+    """The carcass's 18 mm top board reaches through the door's whole thickness at the door's top (a noisy
+    carcass front): thinning the door cannot clear it, so the board is cut back at its front edge rather than
+    the door's seen top edge lowered (a door 16 mm shorter than scanned lets a robot link pass over its top)."""
+    top = _box([0, 0.0, 0.882], [0.8, 0.6, 0.9])                  # the carcass's top board
+    side = _box([0, 0.0, 0.0], [0.018, 0.6, 0.9])
+    door = _box([0.0, -0.016, 0.0], [0.8, 0.002, 0.9])            # its back 2 mm inside, the board 18 mm deep in it
+    top = _box([0, -0.016, 0.882], [0.8, 0.6, 0.9])
+    joints = (JointEstimate("cab1_body1_joint", "fixed", None, 1, np.zeros(3), top.center),
+              JointEstimate("cab1_door2_joint", "revolute", 1, 2, [0, 0, 1.0], [0.0, 0.0, 0.45], 0, 1.5))
+    body = PartFit(1, "body", "cab1_body1", top, 0.0, {}, 10, (top, side))
+    obj = ObjectReconstruction(1, "cabinet", "cab1", 1, (body, _part(2, "door", door)), (), joints, (),
+                               np.eye(4), np.ones(3))
+    (new,), _ = cleared_scene([obj], (), ClearanceConfig())
+    d = new.part(2).solids[0].corners()
+    assert d[:, 2].max() == pytest.approx(0.9, abs=1e-9) and d[:, 1].min() == pytest.approx(-0.016, abs=1e-9)
+    b = new.part(1).solids[0].corners()
+    assert b[:, 1].min() >= d[:, 1].max() - 1e-9 or b[:, 2].max() <= d[:, 2].min() + 1e-9
