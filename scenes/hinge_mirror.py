@@ -22,9 +22,10 @@ def other_edge_origin(origin, axis, T_world_door: np.ndarray, size) -> np.ndarra
     a = np.asarray(axis, dtype=np.float64)
     a = a / np.linalg.norm(a)
     o = np.asarray(origin, dtype=np.float64)
-    R = np.asarray(T_world_door, dtype=np.float64)[:3, :3]
+    T = np.asarray(T_world_door, dtype=np.float64)
+    R = T[:3, :3]
     across = [k for k in range(3) if abs(R[:, k] @ a) < 0.5] or [0, 1, 2]
     normal = R[:, min(across, key=lambda k: float(size[k]))]
     width = np.cross(a, normal)
     width /= np.linalg.norm(width)
-    return o + 2.0 * float((np.asarray(T_world_door, dtype=np.float64)[:3, 3] - o) @ width) * width
+    return o + 2.0 * float((T[:3, 3] - o) @ width) * width
