@@ -1,6 +1,7 @@
 """Benchmark of robust certification:
 ``python -m bench.robust_bench [--seeds 0 1] [--samples 30] [--modes default ...] [--spreads FILE]
-[--robot default|compliant|SPEC] [--engines processes ray] [--speed-only] [--no-speed] [--keep DIR]``.
+[--robot default|compliant|SPEC] [--engines processes ray] [--speed-only] [--no-speed] [--keep DIR]
+[--corpus kitchens|thirdparty] [--only NAME ...]``.
 
 1. Speed: a generated kitchen is scanned (realistic preset) and reconstructed; its first drawer is certified
    with ``--robust N`` on the reconstruction (no truth), once per ``--engines`` (worker processes; Ray: a
@@ -15,6 +16,10 @@
    (guarded approach; or ``--spreads FILE``), ``open-loop`` (the same errors, the plan replayed without the
    guarded approach's correction), ``robot-errors-off`` (scan and physics spreads only). Both verdicts with
    the ``--robot`` (default: the default robot; ``compliant``: the same under a softer joint impedance).
+   ``--corpus thirdparty``: the same on the third-party corpus's objects (``--only`` some of them), each
+   scanned with each ``--seeds`` value (realistic preset) and rebuilt by recon as ``bench.thirdparty_bench
+   --end-to-end`` does; the truth is the object's own URDF. A front recon does not rebuild as a joint, or an
+   object it cannot rebuild, is listed and left out of the matrix.
 """
 
 from __future__ import annotations
@@ -39,6 +44,32 @@ def _reconstruction(seed: int, d: Path) -> Path:
     return d / "rec" / "scene.urdf"
 
 
+def _cases(args, tmp: Path):
+    """Yield (case name, --keep folder name, seed, estimate scene.urdf or None, truth URDF or why recon failed,
+    [task]) per
+    reconstructed scene of ``args.corpus``: a generated kitchen per seed, or each third-party corpus object
+    (``--only``) scanned with each seed (``bench.thirdparty_bench.reconstructed_fronts``)."""
+    if args.corpus == "kitchens":
+        for seed in args.seeds:
+            d = tmp / f"k{seed}"
+            scene = _reconstruction(seed, d)
+            yield f"kitchen {seed}", f"k{seed}", seed, scene, d / "truth.urdf", _tasks(scene)
+        return
+    import thirdparty
+    from bench.thirdparty_bench import reconstructed_fronts
+
+    objs = thirdparty.build_corpus(tmp / "corpus", args.only or None)
+    for seed in args.seeds:
+        for o in objs:
+            case, key = f"{o.spec.name} s{seed}", f"{o.spec.name}_s{seed}"
+            try:
+                est, ref, tasks = reconstructed_fronts(o, tmp / "e2e" / key, seed=seed)
+            except Exception as exc:          # a reconstruction that fails is a result, reported apart
+                yield case, key, seed, None, f"{type(exc).__name__}: {exc}", [f.task for f in o.fronts]
+                continue
+            yield case, key, seed, est, ref, [t for _, t in tasks]
+
+
 def _tasks(scene: Path) -> list[str]:
     from planners.task import movable_joint_tasks
     from simcheck.scene_joints import read_scene_joints
@@ -48,7 +79,12 @@ def _tasks(scene: Path) -> list[str]:
 
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m bench.robust_bench", description=__doc__.split("\n")[0])
-    p.add_argument("--seeds", type=int, nargs="*", default=[0, 1], help="kitchen seeds for the calibration")
+    p.add_argument("--seeds", type=int, nargs="*", default=[0, 1],
+                   help="kitchen seeds for the calibration (--corpus thirdparty: scan seeds)")
+    p.add_argument("--corpus", choices=("kitchens", "thirdparty"), default="kitchens",
+                   help="calibrate on generated kitchens or on the third-party corpus's objects")
+    p.add_argument("--only", nargs="*", default=None, metavar="NAME",
+                   help="--corpus thirdparty: these catalogue objects only (default: all)")
     p.add_argument("--samples", type=int, default=30, help="sampled worlds per task (default 30)")
     p.add_argument("--speed-only", action="store_true", help="only the one-drawer timing")
     p.add_argument("--no-speed", action="store_true", help="skip the one-drawer timing")
@@ -73,24 +109,33 @@ def main(argv: list[str] | None = None) -> int:
             ok_speed = _speed(args, tmp)
             if args.speed_only:
                 return 0 if ok_speed else 1
-        rows = []     # (seed, task, {mode: robust status}, against-truth status)
-        for seed in args.seeds:
-            d = tmp / f"k{seed}"
-            scene = _reconstruction(seed, d)
-            for task in _tasks(scene):
+        rows, skipped = [], []     # (case, task, {mode: robust status}, against-truth status); (case, task, why)
+        for case, key, seed, scene, truth, tasks in _cases(args, tmp):
+            if scene is None:
+                skipped.extend((case, t, truth) for t in tasks)
+                print(f"  {case}: not reconstructed ({truth[:200]})", flush=True)
+                continue
+            for task in tasks:
                 t0 = time.perf_counter()
                 verdicts, counts = {}, {}
-                for mode in args.modes:
-                    keep = None if args.keep is None else args.keep / f"k{seed}" / mode / file_stem(task)
-                    rob = certify(scene, [task], robust=args.samples, seed=seed, images=False, out=keep,
-                                  spreads=_spreads(mode, args.spreads), robot=args.robot_spec).tasks[0]
-                    verdicts[mode], counts[mode] = rob.status, (rob.robust or {}).get("successes")
-                tru = certify(scene, [task], against=d / "truth.urdf", seed=seed, images=False,
-                              robot=args.robot_spec).tasks[0]
-                rows.append((seed, task, verdicts, tru.status))
-                print(f"  kitchen {seed} {task}: robust " + ", ".join(
+                try:
+                    for mode in args.modes:
+                        keep = None if args.keep is None else args.keep / key / mode / file_stem(task)
+                        rob = certify(scene, [task], robust=args.samples, seed=seed, images=False, out=keep,
+                                      spreads=_spreads(mode, args.spreads), robot=args.robot_spec).tasks[0]
+                        verdicts[mode], counts[mode] = rob.status, (rob.robust or {}).get("successes")
+                    tru = certify(scene, [task], against=truth, seed=seed, images=False,
+                                  robot=args.robot_spec).tasks[0]
+                except Exception as exc:      # a front recon did not rebuild as a joint: reported, not counted
+                    skipped.append((case, task, f"{type(exc).__name__}: {exc}"))
+                    print(f"  {case} {task}: not run ({type(exc).__name__}: {str(exc)[:200]})", flush=True)
+                    continue
+                rows.append((case, task, verdicts, tru.status))
+                print(f"  {case} {task}: robust " + ", ".join(
                     f"[{m}] {verdicts[m].value} ({counts[m]}/{args.samples})" for m in args.modes)
                     + f"; against truth {tru.status.value}  [{time.perf_counter() - t0:.0f} s]", flush=True)
+    if skipped:
+        print(f"\nnot in the confusion matrix ({len(skipped)}): " + "; ".join(f"{c} {t}" for c, t, _ in skipped))
     for mode in args.modes:
         _confusion(mode, [(r[2][mode], r[3]) for r in rows])
     return 0

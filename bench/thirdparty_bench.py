@@ -22,7 +22,7 @@ import time
 from collections import Counter, defaultdict
 from pathlib import Path
 
-__all__ = ["main"]
+__all__ = ["main", "reconstructed_fronts"]
 
 TRUTH_TARGET = 0.95
 
@@ -85,29 +85,40 @@ def main(argv: list[str] | None = None) -> int:
     return _report(truth, wrong, len(objs), n_fronts, args.no_wrong)
 
 
-def _end_to_end(objs, root: Path) -> None:
-    """Scan (realistic), reconstruct and certify each front --against its own URDF; print the outcomes."""
+def reconstructed_fronts(built, folder: Path, seed: int = 0) -> tuple[Path, Path, list]:
+    """Scan ``built`` (a corpus object; realistic preset, scan ``seed``), rebuild it with ``recon`` and name its
+    reference as recon names the joints.
+
+    Returns (the reconstruction's scene.urdf, the object's own URDF with its fronts' joints renamed as recon
+    names them, [(front, the front's task on the reconstruction)] in the object's front order), all under
+    ``folder``. Raises whatever the scan or recon raises (a reconstruction that fails is the caller's result).
+    """
     from recon import reconstruct, write_reconstruction
     from scenes.scan_io import write_scan
     from scenes.scanner import scan_scene
     from scenes.scanner.params import params_for_preset
     from thirdparty.scannable import reference_named_as_scan, scene_of
+    scene, joint_part = scene_of(built)
+    scan = scan_scene(scene, params_for_preset("realistic"), seed=seed)
+    files = write_scan(scan, folder / "scan")
+    rec = reconstruct(files["scan_ply"], files["labels_json"], seed=seed)
+    est = Path(write_reconstruction(rec, folder / "recon")["scene.urdf"])
+    ref, names = reference_named_as_scan(built, scene, joint_part, folder / "reference.urdf")
+    return est, ref, [(f, f"{f.task.split(':')[0]}:{names[f.joint]}") for f in built.fronts]
+
+
+def _end_to_end(objs, root: Path) -> None:
+    """Scan (realistic), reconstruct and certify each front --against its own URDF; print the outcomes."""
     rows = []
     for o in objs:
-        scene, joint_part = scene_of(o)
-        scan = scan_scene(scene, params_for_preset("realistic"), seed=0)
-        files = write_scan(scan, root / o.spec.name / "scan")
         try:
-            rec = reconstruct(files["scan_ply"], files["labels_json"], seed=0)
-            est = write_reconstruction(rec, root / o.spec.name / "recon")["scene.urdf"]
+            est, ref, tasks = reconstructed_fronts(o, root / o.spec.name)
         except Exception as exc:          # a reconstruction that fails is a result here
             for f in o.fronts:
                 rows.append((o.spec.name, f.task, f"recon:{type(exc).__name__}", str(exc)))
             continue
-        ref, names = reference_named_as_scan(o, scene, joint_part, root / o.spec.name / "reference.urdf")
-        for f in o.fronts:
-            task = f"{f.task.split(':')[0]}:{names[f.joint]}"
-            status, reason, dt = _certify_one(Path(est), task, ref)
+        for f, task in tasks:
+            status, reason, dt = _certify_one(est, task, ref)
             rows.append((o.spec.name, f.task, status, reason))
             print(f"  e2e   {o.spec.name:28s} {f.task:40s} {status:12s} {dt:5.1f} s", flush=True)
     c = Counter(r[2] for r in rows)
