@@ -261,7 +261,8 @@ def _sweep(kinds, seeds, args, root: Path, log_run) -> list[Run]:
                     work = d / "runs" / f"{kind.name}_{joint}_{k}"
                     est = _fault(kind.name, truth, joint, err, work / "estimate.urdf")
                     try:
-                        t = certify(est, [task], against=truth, seed=seed, out=work / "cert", images=False).tasks[0]
+                        t = certify(est, [task], against=truth, seed=seed, out=work / "cert", images=False,
+                                    robot=args.robot_spec).tasks[0]
                     except Exception as exc:   # an unusable estimate is a result here, not a crash
                         run = Run(kind.name, err, seed, task, "error", (), float("nan"), float("nan"),
                                   f"{type(exc).__name__}: {exc}")
@@ -404,8 +405,17 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--doors", type=int, default=None, help="doors per kitchen (default 2; --quick: 1)")
     p.add_argument("--kinds", default=",".join(k.name for k in KINDS), help="error kinds, comma-separated")
     p.add_argument("--out", default=None, help="keep the generated files here (default: a temp folder)")
+    p.add_argument("--robot", default="default", help="'default', 'compliant' or a robot spec file (simcheck --robot)")
     p.add_argument("-v", "--verbose", action="store_true", help="print every run's reason")
     args = p.parse_args(argv)
+    from simcheck.errors import SimcheckInputError
+    from simcheck.robot_spec_file import load_robot_spec
+
+    try:
+        args.robot_spec = load_robot_spec(args.robot)
+    except SimcheckInputError as exc:
+        print(f"sensitivity_bench: {exc}", file=sys.stderr)
+        return 2
     args.seeds = args.seeds if args.seeds is not None else (1 if args.quick else 3)
     args.doors = args.doors if args.doors is not None else (1 if args.quick else 2)
     names = [n for n in args.kinds.split(",") if n]
@@ -432,19 +442,17 @@ def main(argv: list[str] | None = None) -> int:
     from simcheck.config import DEFAULT_PHYSICS
 
     print(f"\n{len(runs)} runs on {args.seeds} {args.scene}(s); planned on the wrong estimate, executed on the truth. "
-          f"Grasp model: {_grasp_model(DEFAULT_PHYSICS)}")
+          f"Grasp model: {_grasp_model(DEFAULT_PHYSICS, args.robot_spec)}")
     checks = _report(kinds, runs)
     return 0 if all(ok for _, ok, _ in checks) else 1
 
 
-def _grasp_model(physics) -> str:
-    """One line naming the grasp model behind the verdicts: the default robot's gripper (grip force, pad
-    friction, holding force), what ``grasp_force`` certifies (holding force / safety factor) and the arm's
-    compliance (its joint stiffness, else the physics config's isotropic spring)."""
-    import planners
+def _grasp_model(physics, robot) -> str:
+    """One line naming the grasp model behind the verdicts: ``robot``'s gripper (grip force, pad friction,
+    holding force), what ``grasp_force`` certifies (holding force / safety factor) and the arm's compliance
+    (its joint stiffness, else the physics config's isotropic spring)."""
     from simcheck.config import DEFAULT_CRITERIA
 
-    robot = planners.default_robot()
     g = robot.gripper
     arm = (f"joint impedance {'/'.join(f'{k:g}' for k in robot.joint_stiffness)} N*m/rad" if robot.joint_stiffness
            else f"an isotropic {physics.grasp_stiffness:g} N/m spring")
