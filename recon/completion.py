@@ -5,7 +5,7 @@ A scanner rarely sees the top few centimetres of a table leg (under the top's ov
 no contact. For parts whose template says they span vertically (legs), the primitive is extended
 along its vertical axis down to the nearest upward-facing surface below (another part, or the floor
 z = 0) and up to the nearest downward-facing surface above whose outline covers the leg, when these
-are within ``completion_reach``.
+are within ``completion_reach``; an end sunk into another part is cut back to that part's face.
 
 Handles and knobs lose their thin stems the same way (a knob's stem is a few points at most), so a
 mounted part is extended backwards, along its axis nearest the plane's normal, onto the face of a
@@ -112,7 +112,13 @@ def complete_vertical_parts(prims: dict[int, Primitive], labels: dict[int, str],
                             config: CompletionConfig, contacts: ContactConfig) -> tuple[dict[int, Primitive], dict[int, tuple[float, float]]]:
     """Extend legs to what supports / is supported by them.
 
-    Returns (new {part_id: primitive}, {part_id: (metres added below, metres added above)}).
+    A leg end sunk more than ``theta_d`` into another part (its end's centre inside that part's solid,
+    whose face covers the leg) is cut back to that part's face instead: a leg meets what it holds at
+    its face, never passes through it to the next surface beyond (a bed leg whose top is inside a
+    frame fitted low is not extended through the frame to the mattress).
+
+    Returns (new {part_id: primitive}, {part_id: (metres added below, metres added above)}; negative:
+    cut back).
     """
     out, changes = dict(prims), {}
     planes = {i: p.planes(contacts.cylinder_side_faces) for i, p in prims.items()}
@@ -124,29 +130,41 @@ def complete_vertical_parts(prims: dict[int, Primitive], labels: dict[int, str],
             continue
         c = prim.corners()
         bottom, top = float(c[:, 2].min()), float(c[:, 2].max())
+        R = prim.T_world_part[:3, :3]
+        axis = R[:, k] * np.sign(R[2, k])
+        ends = prim.center + np.outer([-1.0, 1.0], axis * prim.size[k] / 2)     # (2, 3) bottom, top
         xy = shapely.Point(*prim.center[:2])
-        below, above = [0.0], []
+        below, above, sunk_below, sunk_above = [0.0], [], [], []
         for j, pls in planes.items():
             if j == i:
                 continue
+            holds_bottom, holds_top = prims[j].contains(ends)
             for pl in pls:
                 if abs(pl.normal[2]) < 0.97:
                     continue
                 z = float(pl.polygon[:, 2].mean())
                 if not shapely.Polygon(pl.polygon[:, :2]).buffer(1e-6).contains(xy):
                     continue
+                inner = bottom + contacts.theta_d < z < top - contacts.theta_d
                 if pl.normal[2] > 0 and bottom - config.completion_reach <= z <= bottom + contacts.theta_d:
                     below.append(z)
                 elif pl.normal[2] < 0 and top - contacts.theta_d <= z <= top + config.completion_reach:
                     above.append(z)
+                elif pl.normal[2] > 0 and holds_bottom and inner:
+                    sunk_below.append(z)
+                elif pl.normal[2] < 0 and holds_top and inner:
+                    sunk_above.append(z)
         below = [z for z in below if bottom - config.completion_reach <= z <= bottom + contacts.theta_d]
         new_bottom = max(below) if below else bottom
         new_top = min(above) if above else top
-        if new_bottom >= bottom - 1e-9 and new_top <= top + 1e-9:
-            continue
         new_bottom, new_top = min(new_bottom, bottom), max(new_top, top)
-        R = prim.T_world_part[:3, :3]
-        axis = R[:, k] * np.sign(R[2, k])
+        # an end sunk deeper than theta_d into another part meets that part's face (never passes it)
+        if sunk_below:
+            new_bottom = max(sunk_below)
+        if sunk_above:
+            new_top = min(sunk_above)
+        if abs(new_bottom - bottom) <= 1e-9 and abs(new_top - top) <= 1e-9:
+            continue
         size = prim.size.copy()
         length = (new_top - new_bottom) / abs(R[2, k])
         shift = ((new_top + new_bottom) / 2 - (top + bottom) / 2) / abs(R[2, k])

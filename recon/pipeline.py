@@ -437,7 +437,7 @@ def complete_parts(state: ObjectState, run: _Run) -> None:
         log.info("object %d part %d (%s): extended %.3f m to the part it reaches", obj.id, i, labels[i], gap)
     prims, completed = complete_vertical_parts(prims, labels, config, contacts)
     for i, (down, up) in completed.items():
-        log.info("object %d part %d (%s): extended %.3f m down, %.3f m up to its supports",
+        log.info("object %d part %d (%s): extended %.3f m down, %.3f m up to its supports (negative: cut back)",
                  obj.id, i, labels[i], down, up)
     prims, mounted = complete_mounted_parts(prims, labels, config, contacts)
     for i, gap in mounted.items():

@@ -109,3 +109,22 @@ def test_a_bed_frame_hidden_at_its_head_end_is_extended_to_its_headboard():
     assert out[80].corners()[:, 1].min() == pytest.approx(1.325 - 1.693 / 2)
     far = Primitive("box", [1.521, 0.05, 1.048], at(2.428, 2.446 + 0.5, 0.527))     # beyond the reach
     assert complete_reaching_parts({80: frame, 85: far}, labels, CFG.completion, CFG.contacts)[1] == {}
+
+
+def test_a_leg_whose_top_sank_into_its_frame_meets_the_frame_not_the_mattress_above():
+    # a bed frame fitted low (underside 0.10) swallows the top 8 cm of a leg (0 .. 0.18); the mattress
+    # above (underside 0.29) is within reach but the leg holds the frame, not the mattress
+    frame = Primitive("box", [2.0, 1.4, 0.16], at(0, 0, 0.18))            # 0.10 .. 0.26
+    mattress = Primitive("box", [2.0, 1.4, 0.2], at(0, 0, 0.39))          # 0.29 .. 0.49
+    leg = Primitive("box", [0.06, 0.06, 0.18], at(0.9, 0.6, 0.09))        # 0 .. 0.18, under both
+    prims, labels = {1: frame, 2: mattress, 3: leg}, {1: "frame", 2: "mattress", 3: "leg"}
+    out, changes = complete_vertical_parts(prims, labels, CFG.completion, CFG.contacts)
+    c = out[3].corners()[:, 2]
+    assert c.min() == pytest.approx(0.0, abs=1e-9) and c.max() == pytest.approx(0.10, abs=1e-9)
+    assert changes[3] == pytest.approx((0.0, -0.08))
+    assert contact_edge(1, frame.planes(), 3, out[3].planes(), CFG.contacts) is not None
+    assert contact_edge(2, mattress.planes(), 3, out[3].planes(), CFG.contacts) is None
+    # sunk by less than theta_d: the leg is left as it is
+    leg2 = Primitive("box", [0.06, 0.06, 0.11], at(0.9, 0.6, 0.055))      # 0 .. 0.11
+    out, changes = complete_vertical_parts({1: frame, 2: mattress, 3: leg2}, labels, CFG.completion, CFG.contacts)
+    assert out[3] is leg2 and 3 not in changes
