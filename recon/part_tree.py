@@ -103,8 +103,9 @@ def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
             g.add_edge(root, v, weight=config.fallback_edge_weight)
         tpl = template_for(category, labels[v])
         if v != root and distances and tpl is not None:
+            # the root's fallback edge is no contact: the root may still be the near parent
             near = [(distances.get((u, v), np.inf), u) for u in labels
-                    if u != v and labels[u] in tpl.parents and not g.has_edge(u, v)]
+                    if u != v and labels[u] in tpl.parents and (u, v) not in by_pair]
             if near:
                 d, u = min(near)
                 if d < config.near_parent_distance:

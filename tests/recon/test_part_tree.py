@@ -72,3 +72,19 @@ def test_bed_mattress_against_headboard_outranks_a_leg_touching_the_headboard():
     assert s[(6, 7)] == pytest.approx(1.0)
     assert s[(2, 6)] == pytest.approx(0.996 * CFG.tree.foreign_parent_penalty)
     assert s[(6, 7)] > s[(2, 6)]
+
+
+def test_the_root_is_the_near_parent_of_a_part_whose_contact_eq1_missed():
+    # a chair arm 3 cm above its seat (the root; its foot unseen) touches the back, a parent its template
+    # does not expect: the seat, right there, is its parent (the root's fallback edge is no contact)
+    prims = {1: box([0, 0, 0.40], [0.45, 0.45, 0.44]), 2: box([0.42, 0, 0.44], [0.45, 0.45, 0.9]),
+             3: box([0.0, 0.0, 0.47], [0.42, 0.05, 0.68])}
+    labels = {1: "seat", 2: "back", 3: "arm"}
+    edges = contact_edges({i: planes(p) for i, p in prims.items()}, CFG.contacts)
+    pairs = {(e.parent_part_id, e.child_part_id) for e in edges}
+    assert (2, 3) in pairs and (1, 3) not in pairs
+    dist = {(a, b): float(prims[a].surface_distance(np.vstack([prims[b].corners(), prims[b].center[None]])).min())
+            for a in prims for b in prims if a != b}
+    tree = part_tree("chair", labels, {i: p.volume for i, p in prims.items()}, edges, CFG.tree, CFG.contacts,
+                     distances=dist)
+    assert tree.root == 1 and tree.parent[3] == 1 and tree.edges[3] is None
