@@ -12,8 +12,11 @@ Who yields, for each overlapping pair of shapes on two links:
     a fitted wall        moves back (away from the room) until it clears the other shape;
     moving vs static     the moving part's shape, through its thickness only (a door/drawer front
                          thinned from behind: the faces the camera saw stay where they were measured);
-                         when that cannot clear it, the static shape (a carcass board cut back at its
-                         edge behind an overlay front); only then the moving shape along any axis;
+                         when that cannot clear it and the moving shape is a board, the static shape
+                         by at most two of the board's thicknesses (a carcass board cut back at its edge
+                         behind an overlay front; a deeper overlap is a misfit of the carcass, not an
+                         edge hidden behind a front); only then the moving shape along any axis, and
+                         last the static one by any depth;
     same rigid group     the tree child (a leg under its seat, a handle on its front), else the smaller;
     two moving groups    the one hanging from the other, else the smaller.
 A shape yields by moving one face inward along one of its own axes: the side and axis that need the
@@ -145,15 +148,25 @@ def _yielders(a: SceneShape, b: SceneShape, groups_parent: dict) -> list[tuple[S
     return [(first, second)] if second.wall else [(first, second), (second, first)]
 
 
-def _attempts(order: list[tuple[SceneShape, SceneShape]]) -> list[tuple[SceneShape, SceneShape, tuple[int, ...]]]:
-    """[(yielding, other, axes it may be cut along), ...]: a moving shape against a static one is first only
-    thinned through its thickness (a front from behind: its seen faces stay where they were measured), then
-    the static shape is cut, and only then the moving one along any axis."""
-    every = (0, 1, 2)
+BOARD_ASPECT = 0.25
+"""A shape whose thinnest extent is at most this fraction of its middle one is a board (a door or drawer
+front), for :func:`_attempts`."""
+
+
+def _attempts(order: list[tuple[SceneShape, SceneShape]]) -> list[tuple[SceneShape, SceneShape, tuple[int, ...], float]]:
+    """[(yielding, other, axes it may be cut along, deepest cut m), ...]: a moving shape against a static one
+    is first only thinned through its thickness (a front from behind: its seen faces stay where they were
+    measured), then -- when the moving shape is a board (a front) -- the static shape is cut by at most two
+    of its thicknesses (a carcass fitted from noisy points reaching behind the front), then the moving one
+    along any axis, and last the static one by any depth."""
+    every, inf = (0, 1, 2), float("inf")
     if len(order) == 2 and order[0][0].group is not None and order[0][1].group is None:
         y, o = order[0]
-        return [(y, o, (int(np.argmin(y.prim.size)),)), (o, y, every), (y, o, every)]
-    return [(y, o, every) for y, o in order]
+        size = np.sort(np.asarray(y.prim.size, float))
+        thin = int(np.argmin(y.prim.size))
+        behind_board = 2.0 * size[0] if size[0] <= BOARD_ASPECT * size[1] else 0.0
+        return [(y, o, (thin,), inf), (o, y, every, behind_board), (y, o, every, inf), (o, y, every, inf)]
+    return [(y, o, every, inf) for y, o in order]
 
 
 def _hangs_from(g: tuple, h: tuple, groups_parent: dict) -> bool:
@@ -167,12 +180,12 @@ def _hangs_from(g: tuple, h: tuple, groups_parent: dict) -> bool:
 
 
 def _cut(prim: Primitive, other: Primitive, gap: float, cfg: ClearanceConfig,
-         axes: tuple[int, ...] = (0, 1, 2)) -> tuple[Primitive, float, str] | None:
+         axes: tuple[int, ...] = (0, 1, 2), max_depth: float = float("inf")) -> tuple[Primitive, float, str] | None:
     """``prim`` with one face moved inward along one of its axes so that its projection on that axis
     clears ``other``'s by ``gap``: the smallest such cut that keeps ``min_keep_fraction`` of the extent.
     A cylinder cut across its axis (a sphere cut along any axis) loses that much diameter and moves
     its centre half of it away from ``other``.
-    ``axes``: the shape's axes a cut may move a face along.
+    ``axes``: the shape's axes a cut may move a face along; ``max_depth`` (m): the deepest cut allowed.
     Returns (cut shape, cut depth m, "+x" / "-y" ...: the face moved), or None."""
     R, c, h = _frame(prim)
     Ro, co, ho = _frame(other)
@@ -183,7 +196,7 @@ def _cut(prim: Primitive, other: Primitive, gap: float, cfg: ClearanceConfig,
         lo_o, hi_o = float(co @ u) - r_o, float(co @ u) + r_o
         lo, hi = float(c @ u) - h[k], float(c @ u) + h[k]
         for sign, amount in ((+1, hi - (lo_o - gap)), (-1, (hi_o + gap) - lo)):
-            if amount <= 0 or 2 * h[k] - amount < cfg.min_keep_fraction * 2 * h[k]:
+            if amount <= 0 or amount > max_depth or 2 * h[k] - amount < cfg.min_keep_fraction * 2 * h[k]:
                 continue
             if best is None or amount < best[0]:
                 best = (amount, k, sign)
@@ -246,9 +259,9 @@ def cleared_scene(objects, walls, cfg: ClearanceConfig,
             if separation(a.prim, b.prim) >= gap - cfg.tolerance:
                 continue
             index = {id(a): i, id(b): j}
-            for y, o, axes in _attempts(_yielders(a, b, groups_parent)):
+            for y, o, axes, depth in _attempts(_yielders(a, b, groups_parent)):
                 res = (_moved_back(y.prim, o.prim, gap, cfg) if y.wall and not o.wall
-                       else _cut(y.prim, o.prim, gap, cfg, axes))
+                       else _cut(y.prim, o.prim, gap, cfg, axes, depth))
                 if res is not None:
                     k = index[id(y)]
                     shapes[k] = dataclasses.replace(y, prim=res[0])

@@ -141,3 +141,21 @@ def test_an_overlay_door_over_its_carcass_top_board_keeps_its_top_and_the_board_
     assert d[:, 2].max() == pytest.approx(0.9, abs=1e-9) and d[:, 1].min() == pytest.approx(-0.016, abs=1e-9)
     b = new.part(1).solids[0].corners()
     assert b[:, 1].min() >= d[:, 1].max() - 1e-9 or b[:, 2].max() <= d[:, 2].min() + 1e-9
+
+
+@pytest.mark.parametrize("door_front_y, board_front_y", [(-0.016, -0.05), (-0.2, -0.3)])
+def test_a_carcass_reaching_far_past_a_front_is_not_cut_back(door_front_y, board_front_y):
+    """A carcass board reaching more than two board thicknesses past the front (a misfit of the carcass,
+    not an edge hidden behind it: 52 mm here), or a moving shape that is not a board (a drawer box 25 cm deep),
+    does not cut the static shape back: the moving shape yields along its cheapest axis, as before."""
+    top = _box([0, board_front_y, 0.882], [0.8, 0.6, 0.9])
+    thick = 0.018 if door_front_y > -0.1 else 0.25
+    door = _box([0.0, door_front_y, 0.0], [0.8, door_front_y + thick, 0.9])
+    joints = (JointEstimate("cab1_body1_joint", "fixed", None, 1, np.zeros(3), top.center),
+              JointEstimate("cab1_door2_joint", "revolute", 1, 2, [0, 0, 1.0], [0.0, 0.0, 0.45], 0, 1.5))
+    body = PartFit(1, "body", "cab1_body1", top, 0.0, {}, 10, (top,))
+    obj = ObjectReconstruction(1, "cabinet", "cab1", 1, (body, _part(2, "door", door)), (), joints, (),
+                               np.eye(4), np.ones(3))
+    (new,), _ = cleared_scene([obj], (), ClearanceConfig())
+    assert new.part(1).solids[0].isclose(top)
+    assert new.part(2).solids[0].corners()[:, 2].max() == pytest.approx(0.882, abs=1e-9)
