@@ -22,7 +22,8 @@ from recon.templates import ROOT_LABELS, expected_contact, template_for
 __all__ = ["PartTree", "UNCONTACTED_TREE_EDGE_SCORE", "choose_root", "contact_scores", "part_distances", "part_tree"]
 
 UNCONTACTED_TREE_EDGE_SCORE = 0.05
-"""Score given (for the mAP ranking) to a tree edge the part tree made without an Eq. 1 contact."""
+"""Least score given (for the mAP ranking) to a tree edge the part tree made without an Eq. 1 contact
+(one to a parent its template expects scores its near-parent weight when higher: :func:`contact_scores`)."""
 
 
 @dataclass(frozen=True)
@@ -136,8 +137,11 @@ def contact_scores(obj: ObjectReconstruction, config: TreeConfig, weighted: bool
     multiplies it by the template prior ``config.foreign_parent_penalty`` when the templates expect no
     contact between the two labels (drawer–drawer, body–handle, leg–headboard; a bed's
     headboard–mattress is expected, :func:`recon.templates.expected_contact`), and also lists the tree
-    edges the part tree made without an Eq. 1 contact (a parent the template expects, close by) with
-    score ``UNCONTACTED_TREE_EDGE_SCORE``. ``weighted=False``: raw Eq. 1 contacts only.
+    edges the part tree made without an Eq. 1 contact: one to a parent the template expects scores the
+    near-parent weight of Eq. 4 at the parts' distance (``near_parent_weight`` fading to 0 at
+    ``near_parent_distance``, the weight :func:`part_tree` gave it; distance from the child's corners
+    and centre to the parent's surface, final primitives), at least ``UNCONTACTED_TREE_EDGE_SCORE``,
+    which any other such edge scores. ``weighted=False``: raw Eq. 1 contacts only.
     """
     labels = {p.part_id: p.label for p in obj.parts}
     out: dict[tuple[int, int], float] = {}
@@ -149,6 +153,16 @@ def contact_scores(obj: ObjectReconstruction, config: TreeConfig, weighted: bool
     for (a, b), s in out.items():
         if not expected_contact(obj.category, labels.get(a, ""), labels.get(b, "")):
             out[(a, b)] = s * config.foreign_parent_penalty
+    prims = {p.part_id: p.primitive for p in obj.parts}
     for p, c in obj.tree_edges():
-        out.setdefault((min(p, c), max(p, c)), UNCONTACTED_TREE_EDGE_SCORE)
+        key = (min(p, c), max(p, c))
+        if key in out:
+            continue
+        score = UNCONTACTED_TREE_EDGE_SCORE
+        tpl = template_for(obj.category, labels.get(c, ""))
+        if tpl is not None and labels.get(p) in tpl.parents and p in prims and c in prims:
+            q = np.vstack([prims[c].corners(), prims[c].center[None]])
+            d = float(prims[p].surface_distance(q).min())
+            score = max(score, config.near_parent_weight * (1.0 - d / config.near_parent_distance))
+        out[key] = score
     return out

@@ -88,3 +88,26 @@ def test_the_root_is_the_near_parent_of_a_part_whose_contact_eq1_missed():
     tree = part_tree("chair", labels, {i: p.volume for i, p in prims.items()}, edges, CFG.tree, CFG.contacts,
                      distances=dist)
     assert tree.root == 1 and tree.parent[3] == 1 and tree.edges[3] is None
+
+
+def test_an_uncontacted_tree_edge_to_an_expected_parent_scores_its_near_parent_weight():
+    # a handle 1 cm in front of its door (its fit turned 18 deg: Eq. 1 finds no contact) hangs from the
+    # door by the near-parent rule; it must outrank the doors' foreign door-door contact (0.2 x Cont)
+    door = box([0, 0, 0], [0.42, 0.018, 1.6])
+    door2 = box([0.42, 0, 0], [0.84, 0.018, 1.6])
+    handle = box([0.35, -0.16, 0.9], [0.37, -0.01, 1.25], rotvec=(0, 0, 0.3))
+    labels = {1: "body", 2: "door", 3: "door", 4: "handle"}
+    prims = {1: box([0, 0.018, 0], [0.84, 0.7, 1.6]), 2: door, 3: door2, 4: handle}
+    parts = tuple(PartFit(i, labels[i], f"refrigerator1_{labels[i]}{i}", prims[i], 0.0, {}, 100, ()) for i in prims)
+    joints = (JointEstimate("j1", JointType.FIXED, None, 1, [0, 0, 1], [0, 0, 0]),
+              JointEstimate("j2", JointType.REVOLUTE, 1, 2, [0, 0, 1], [0, 0, 0], contact_score=1.0),
+              JointEstimate("j3", JointType.REVOLUTE, 1, 3, [0, 0, 1], [0, 0, 0], contact_score=1.0),
+              JointEstimate("j4", JointType.FIXED, 2, 4, [0, 0, 1], [0, 0, 0]))
+    edges = tuple(ContactEdge(p, c, s, 1.0, 0.0, 0, 0) for p, c, s in [(1, 2, 1.0), (1, 3, 1.0), (2, 3, 0.93)])
+    fridge = ObjectReconstruction(1, "refrigerator", "refrigerator1", 1, parts, edges, joints, (4,), np.eye(4),
+                                  np.ones(3))
+    s = contact_scores(fridge, CFG.tree)
+    d = float(door.surface_distance(np.vstack([handle.corners(), handle.center[None]])).min())
+    assert d < 0.02
+    assert s[(2, 4)] == pytest.approx(CFG.tree.near_parent_weight * (1 - d / CFG.tree.near_parent_distance))
+    assert s[(2, 4)] > s[(2, 3)] == pytest.approx(0.93 * CFG.tree.foreign_parent_penalty)
