@@ -54,7 +54,7 @@ class ScanConfig:
     """... a point is an outlier when its mean neighbour distance exceeds the cloud's mean by this
     many standard deviations."""
     fragment_link_spacings: float = 8.0
-    """A handle's (knob's) points closer than this many times the point spacing (median nearest-neighbour
+    """A handle's (knob's, leg's) points closer than this many times the point spacing (median nearest-neighbour
     distance) of its object, or of its own points when sparser, are linked; its largest linked cluster is
     the handle (label_fragments.py) ..."""
     fragment_min_share: float = 0.34

@@ -6,7 +6,7 @@ Stages, in order (each a function below; per-object state travels in an :class:`
                        z-up or not in metres refused; the scan moved into the floor frame (floor z = 0,
                        z up) for every stage below (leveling.py, frame_checks.py)
     remove_outliers    statistical outliers dropped part by part (outliers.py)
-    remove_label_fragments  a handle's points apart from its largest cluster dropped (label_fragments.py)
+    remove_label_fragments  a handle's (leg's) points apart from its largest cluster dropped (label_fragments.py)
     split_labelled_fronts  a drawer/door part showing horizontal gaps split, one part per front (front_split.py)
     fit_primitives     Eq. 3: the best primitive per part, the base part first; a fit that does not cover
                        its points is refitted with the other kinds (fitting.py, coverage.py); a base box
@@ -277,8 +277,8 @@ def remove_outliers(scan: Scan, run: _Run) -> Scan:
 
 
 def remove_label_fragments(scan: Scan, run: _Run) -> Scan:
-    """Every handle/knob part reduced to its cluster: the points a segmentation labelled handle apart
-    from the handle are dropped from it (label_fragments.py)."""
+    """Every handle/knob/leg part reduced to its cluster: the points a segmentation gave its label apart
+    from the part are dropped from it (label_fragments.py)."""
     scan, removed = without_label_fragments(scan, run.config.scan)
     if removed:
         log.info("removed %d handle points lying apart from their handles (label fragments)", removed)

@@ -43,3 +43,17 @@ def test_the_scan_stage_reduces_handles_only_and_links_by_the_objects_spacing():
     door_out, handle_out = out.objects[0].parts
     assert door_out is parts[0] and len(handle_out.points) == 15 and len(handle_out.normals) == 15
     assert np.array_equal(out.points, scan.points)           # the scan's arrays keep every point
+
+
+def test_a_legs_label_fragment_on_the_mattress_is_dropped():
+    # random/2 scannet bed4_leg20: 25 points on the leg + 7 leg-labelled points on the mattress 1.4 m away
+    rng = np.random.default_rng(5)
+    leg = np.c_[rng.uniform(-0.54, -0.48, 25), rng.uniform(-2.6, -2.54, 25), rng.uniform(0.0, 0.17, 25)]
+    frag = np.c_[rng.uniform(-1.62, -1.56, 7), rng.uniform(-1.7, -1.65, 7), np.full(7, 0.5)]
+    frame = np.c_[rng.uniform(-1.8, -0.5, 600), rng.uniform(-2.6, -0.6, 600), rng.uniform(0.18, 0.32, 600)]
+    parts = (PartPoints(1, 2, "frame", frame), PartPoints(1, 3, "leg", np.concatenate([leg, frag])))
+    pts = np.concatenate([p.points for p in parts])
+    scan = Scan(pts, np.ones(len(pts), np.int64), np.repeat([2, 3], [600, 32]), None, None,
+                (ObjectPoints(1, "bed", parts),), (), "test")
+    out, removed = without_label_fragments(scan, ScanConfig())
+    assert removed == 7 and np.array_equal(out.objects[0].parts[1].points, leg)
