@@ -7,8 +7,8 @@ The scene URDF is loaded as a pinocchio model too and appended to the robot mode
 articulation state is part of the configuration: the task joint takes the value ``s`` of the check, every
 other scene joint the value of ``scene_state``. A check covers robot self-collision (non-adjacent,
 non-ignored link pairs), robot vs floor (a half-space on the scene's floor) and robot vs every scene geometry,
-through pinocchio's broad-phase manager (coal dynamic AABB tree), all in C++ (~30k checks/s). Every call
-increments :attr:`PlanningWorld.checks`.
+through pinocchio's broad-phase manager (coal's sorted sweep-and-prune, :data:`BROADPHASE`), all in C++
+(~20k checks/s). Every call increments :attr:`PlanningWorld.checks`.
 
 Frames: the world is the scene URDF's frame. The robot's root link stands at the floor frame's origin
 (:meth:`RobotKinematics.standing_on`, :attr:`scenes.description.SceneFloor.T_scene_floor`; the world origin
@@ -32,6 +32,14 @@ from planners.scene_urdf import read_scene_urdf
 from scenes.description import LEVEL_FLOOR, SceneFloor, SceneModel
 
 __all__ = ["LIMIT_TOLERANCE", "PlanningWorld", "RobotKinematics"]
+
+#: the broad phase of every planning check. Any broad phase gives the same answer: it only skips pairs whose
+#: bounding boxes, grown by each pair's security margin, stay apart, so a check is true exactly when some active
+#: pair is closer than its margin (coal's narrow phase on that pair). Coal's simple sweep-and-prune sorts the
+#: boxes along one axis once per check; the dynamic AABB tree rebuilds itself at every check: 1.6x the cost of a
+#: check on a kitchen (~110 geometries) and more on larger scenes (measured in docs/decisions.md). (Coal's plain
+#: SaP manager is NOT used: on a kitchen it answered 2 of 3,628 checks differently from the others.)
+BROADPHASE = pin.BroadPhaseManager_SSaPCollisionManager
 
 #: how far (rad or m) a configuration may lie beyond a joint limit and still count as within it: a robot
 #: executed in physics rests on a limit up to rounding (a scenario's next task starts there)
@@ -238,8 +246,8 @@ class PlanningWorld:
 
     The scene model (names prefixed with ``scene::``) is appended to the robot model, so one configuration
     vector holds the robot joints and the scene joints; one geometry model holds the robot's convex hulls,
-    the scene geometry and the floor; pinocchio's broad-phase manager (coal dynamic AABB tree) answers a
-    check in C++. Gripper-handle pairs are switched off while ``allow_grasp_contact`` is true.
+    the scene geometry and the floor; pinocchio's broad-phase manager (:data:`BROADPHASE`) answers a check in
+    C++. Gripper-handle pairs are switched off while ``allow_grasp_contact`` is true.
 
     Args:
         robot: the robot's kinematics (shared across tasks).
@@ -336,7 +344,7 @@ class PlanningWorld:
         self._clearance = float(clearance)
         self._approach_clearance = float(clearance if approach_clearance is None else approach_clearance)
         self._allow = False
-        self.manager = pin.BroadPhaseManager_DynamicAABBTreeCollisionManager(self.model, self.geom, self.gdata)
+        self.manager = BROADPHASE(self.model, self.geom, self.gdata)
         self.checks = 0
 
     @staticmethod

@@ -155,3 +155,29 @@ def test_on_the_approach_the_gripper_keeps_the_clearance_from_a_neighbour_but_no
     assert far.in_collision(q_right, 0.0)
     far.keep_gripper_clear(False)
     assert not far.in_collision(q_right, 0.0)
+
+
+def test_the_broad_phase_answers_as_every_pair_checked_one_by_one(robot, fixture_urdf):
+    """``in_collision`` (through the broad phase) is true exactly when some active pair is closer than its security
+    margin: the same answer as checking every pair (no broad phase) and as coal's dynamic AABB tree, with the
+    grasp allowance and the gripper's approach clearance switched on and off, near the cabinet."""
+    import pinocchio as pin
+
+    kin, world, _, _ = _world(robot, fixture_urdf, clearance=0.01)
+    rng = np.random.default_rng(3)
+    n = 150
+    qs = rng.uniform(kin.lower, kin.upper, size=(n, robot.dof))
+    qs[:, 0] = rng.uniform(0.4, 1.1, n)
+    qs[:, 1] = rng.uniform(-0.6, 0.6, n)
+    qs[:, 2] = rng.uniform(-0.6, 0.6, n)
+    s = rng.uniform(0.0, 0.35, n)
+    tree = pin.BroadPhaseManager_DynamicAABBTreeCollisionManager(world.model, world.geom, world.gdata)
+    answers = []
+    for k, (q, sk) in enumerate(zip(qs, s)):
+        allow, clear = bool(k % 2), bool(k // 2 % 2)
+        world.keep_gripper_clear(clear)
+        ours = world.in_collision(q, sk, allow)
+        pairs = bool(pin.computeCollisions(world.model, world.data, world.geom, world.gdata, world.q, False))
+        assert ours == pairs == bool(pin.computeCollisions(world.model, world.data, tree, world.q, True)), k
+        answers.append(ours)
+    assert 0.2 < np.mean(answers) < 0.8               # both outcomes
