@@ -208,8 +208,9 @@ class RobotKinematics:
         """Tool pose ``(4, 4)`` and its ``(6, dof)`` Jacobian (linear; angular), world-aligned at the tool."""
         qf = self.full_q(q)
         J = pin.computeFrameJacobian(self.model, self.data, qf, self.tool_id, pin.LOCAL_WORLD_ALIGNED)
-        pin.updateFramePlacement(self.model, self.data, self.tool_id)
-        return np.array(self.data.oMf[self.tool_id].homogeneous), np.array(J[:, self.idx_q])
+        # homogeneous is a new array, the gathered columns too (in the gather's memory order, which the IK's matrix
+        # products follow: another order would change their last bits)
+        return pin.updateFramePlacement(self.model, self.data, self.tool_id).homogeneous, J[:, self.idx_q]
 
     def gripper_reach(self, direction=(0.0, 0.0, 1.0)) -> float:
         """How far, m, the gripper links' collision hulls reach past the tool frame's origin along ``direction``
