@@ -19,8 +19,11 @@ for a floor at z = 0), so every pose (tool, frames, shoulder) is in the scene's 
 from __future__ import annotations
 
 import copy
+import functools
+import hashlib
 import logging
 from collections import defaultdict
+from pathlib import Path
 
 import coal
 import numpy as np
@@ -274,40 +277,10 @@ class PlanningWorld:
         self.robot = robot
         self.scene = scene
         self.task_joint = task_joint
-        path = str(scene.path)
-        try:
-            smodel = pin.buildModelFromUrdf(path)
-            sgeom = pin.buildGeomFromUrdf(smodel, path, pin.GeometryType.COLLISION,
-                                          package_dirs=[str(scene.path.parent)])
-        except Exception as e:
-            raise SceneURDFError(f"{path}: pinocchio cannot load the scene URDF ({e})") from e
+        smodel, self.model, self.geom, key_of, nr, fi = _joined_models(robot, scene)
         self.smodel, self.sdata = smodel, smodel.createData()
-        # (link, index) of every scene geometry, in URDF order per link (matches the pure reading), by the
-        # geometry's name: pinocchio.appendModel reorders geometries (those fixed to the world first).
         pre = self.PREFIX
-        counter = defaultdict(int)
-        key_of = {}
-        for go in sgeom.geometryObjects:
-            link = smodel.frames[go.parentFrame].name
-            key_of[pre + go.name] = (link, counter[link])
-            counter[link] += 1
-        for i in range(1, len(smodel.frames)):
-            f = smodel.frames[i]
-            f.name = pre + f.name
-            smodel.frames[i] = f
-        for i in range(1, smodel.njoints):
-            smodel.names[i] = pre + smodel.names[i]
-        for go in sgeom.geometryObjects:
-            go.name = pre + go.name
-        nr = robot.geom_model.ngeoms
-        self.model, self.geom = pin.appendModel(robot.model, smodel, robot.geom_model.copy(), sgeom, 0,
-                                                pin.SE3.Identity())
-        up = robot.floor
-        floor = pin.GeometryObject("floor", 0, 0, pin.SE3.Identity(),
-                                   coal.Halfspace(np.array(up.normal, dtype=float), float(up.height_m)))
-        fi = self.geom.addGeometryObject(floor)
-        for a in range(nr):
-            self.geom.addCollisionPair(pin.CollisionPair(a, fi))
+        path = str(scene.path)
         self.data = self.model.createData()
         self.gdata = pin.GeometryData(self.geom)
         self.q = pin.neutral(self.model)
@@ -443,3 +416,59 @@ class PlanningWorld:
         pin.framesForwardKinematics(self.model, self.data, q)
         fid = self.model.getFrameId(self.PREFIX + self.scene.joints[self.task_joint].child)
         return np.array(self.data.oMf[fid].homogeneous)
+
+
+def _joined_models(robot: RobotKinematics, scene: SceneModel) -> tuple:
+    """``(scene model, robot + scene model, robot + scene + floor geometry model, {geometry name: (link, index)},
+    number of robot geometries, index of the floor)`` for :class:`PlanningWorld` (which never changes them): built
+    once per robot and scene file contents when the scene has no meshes (a mesh file may change under an unchanged
+    URDF), so the tasks of one scene (a batch, ``all-movable``) share them."""
+    if any(c.mesh is not None for link in scene.links.values() for c in link.collisions):
+        return _build_joined(robot, scene.path)
+    try:
+        digest = hashlib.sha1(Path(scene.path).read_bytes()).hexdigest()
+    except OSError:
+        return _build_joined(robot, scene.path)
+    return _cached_joined(robot, str(scene.path), digest)
+
+
+@functools.lru_cache(maxsize=4)
+def _cached_joined(robot: RobotKinematics, path: str, digest: str) -> tuple:
+    return _build_joined(robot, Path(path))
+
+
+def _build_joined(robot: RobotKinematics, scene_path: Path) -> tuple:
+    """See :func:`_joined_models`."""
+    path = str(scene_path)
+    try:
+        smodel = pin.buildModelFromUrdf(path)
+        sgeom = pin.buildGeomFromUrdf(smodel, path, pin.GeometryType.COLLISION,
+                                      package_dirs=[str(Path(scene_path).parent)])
+    except Exception as e:
+        raise SceneURDFError(f"{path}: pinocchio cannot load the scene URDF ({e})") from e
+    # (link, index) of every scene geometry, in URDF order per link (matches the pure reading), by the
+    # geometry's name: pinocchio.appendModel reorders geometries (those fixed to the world first).
+    pre = PlanningWorld.PREFIX
+    counter = defaultdict(int)
+    key_of = {}
+    for go in sgeom.geometryObjects:
+        link = smodel.frames[go.parentFrame].name
+        key_of[pre + go.name] = (link, counter[link])
+        counter[link] += 1
+    for i in range(1, len(smodel.frames)):
+        f = smodel.frames[i]
+        f.name = pre + f.name
+        smodel.frames[i] = f
+    for i in range(1, smodel.njoints):
+        smodel.names[i] = pre + smodel.names[i]
+    for go in sgeom.geometryObjects:
+        go.name = pre + go.name
+    nr = robot.geom_model.ngeoms
+    model, geom = pin.appendModel(robot.model, smodel, robot.geom_model.copy(), sgeom, 0, pin.SE3.Identity())
+    up = robot.floor
+    floor = pin.GeometryObject("floor", 0, 0, pin.SE3.Identity(),
+                               coal.Halfspace(np.array(up.normal, dtype=float), float(up.height_m)))
+    fi = geom.addGeometryObject(floor)
+    for a in range(nr):
+        geom.addCollisionPair(pin.CollisionPair(a, fi))
+    return smodel, model, geom, key_of, nr, fi

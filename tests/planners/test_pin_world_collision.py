@@ -181,3 +181,14 @@ def test_the_broad_phase_answers_as_every_pair_checked_one_by_one(robot, fixture
         assert ours == pairs == bool(pin.computeCollisions(world.model, world.data, tree, world.q, True)), k
         answers.append(ours)
     assert 0.2 < np.mean(answers) < 0.8               # both outcomes
+
+
+def test_worlds_of_one_scene_file_share_its_models_until_the_file_changes(robot, fixture_urdf, tmp_path):
+    kin, world, _, _ = _world(robot, fixture_urdf)
+    again = _world(robot, fixture_urdf)[1]
+    assert again.geom is world.geom and again.gdata is not world.gdata   # per-world state stays per world
+    copy = tmp_path / "scene.urdf"
+    copy.write_text(fixture_urdf.read_text())
+    first = _world(robot, copy)[1]
+    copy.write_text(fixture_urdf.read_text().replace("<robot name=", "<robot name=\"changed\" x="))
+    assert _world(robot, copy)[1].geom is not first.geom
