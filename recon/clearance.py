@@ -10,13 +10,13 @@ far from everything around it.
 
 Who yields, for each overlapping pair of shapes on two links:
     a fitted wall        moves back (away from the room) until it clears the other shape;
-    moving vs static     the moving part's shape, through its thickness only (a door/drawer front
-                         thinned from behind: the faces the camera saw stay where they were measured);
-                         when that cannot clear it and the moving shape is a board, the static shape
-                         by at most two of the board's thicknesses (a carcass board cut back at its edge
-                         behind an overlay front; a deeper overlap is a misfit of the carcass, not an
-                         edge hidden behind a front); only then the moving shape along any axis, and
-                         last the static one by any depth;
+    moving vs static     when the moving shape is a board (a front), the static shape by at most two
+                         of the board's thicknesses (a carcass front fitted proud, cut back behind an
+                         overlay front, which keeps its whole fitted board; a deeper overlap is a misfit
+                         of the carcass, not an edge hidden behind a front); else the moving part's
+                         shape through its thickness only (thinned from behind: the faces the camera
+                         saw stay where they were measured); only then the moving shape along any
+                         axis, and last the static one by any depth;
     same rigid group     the tree child (a leg under its seat, a handle on its front), else the smaller;
     two moving groups    the one hanging from the other, else the smaller.
 A shape yields by moving one face inward along one of its own axes: the side and axis that need the
@@ -154,18 +154,19 @@ front), for :func:`_attempts`."""
 
 
 def _attempts(order: list[tuple[SceneShape, SceneShape]]) -> list[tuple[SceneShape, SceneShape, tuple[int, ...], float]]:
-    """[(yielding, other, axes it may be cut along, deepest cut m), ...]: a moving shape against a static one
-    is first only thinned through its thickness (a front from behind: its seen faces stay where they were
-    measured), then -- when the moving shape is a board (a front) -- the static shape is cut by at most two
-    of its thicknesses (a carcass fitted from noisy points reaching behind the front), then the moving one
-    along any axis, and last the static one by any depth."""
+    """[(yielding, other, axes it may be cut along, deepest cut m), ...]: a moving shape against a static one:
+    when the moving shape is a board (a front), first the static shape is cut by at most two of the board's
+    thicknesses (a carcass front fitted from noisy points, reaching behind the front: the front keeps its whole
+    fitted board, whose back the robot may pass once it is open); then the moving shape is thinned through its
+    thickness (from behind: its seen faces stay where they were measured), then cut along any axis, and last
+    the static one by any depth."""
     every, inf = (0, 1, 2), float("inf")
     if len(order) == 2 and order[0][0].group is not None and order[0][1].group is None:
         y, o = order[0]
         size = np.sort(np.asarray(y.prim.size, float))
         thin = int(np.argmin(y.prim.size))
         behind_board = 2.0 * size[0] if size[0] <= BOARD_ASPECT * size[1] else 0.0
-        return [(y, o, (thin,), inf), (o, y, every, behind_board), (y, o, every, inf), (o, y, every, inf)]
+        return [(o, y, every, behind_board), (y, o, (thin,), inf), (y, o, every, inf), (o, y, every, inf)]
     return [(y, o, every, inf) for y, o in order]
 
 

@@ -51,15 +51,18 @@ def _cabinet(door_back_y: float):
                                 joints, (), np.eye(4), np.ones(3))
 
 
-def test_a_door_sunk_into_its_body_is_thinned_from_behind_and_keeps_its_outer_face():
+def test_a_door_sunk_into_its_body_keeps_its_thickness_and_the_body_is_cut_back_behind_it():
+    """An 18 mm door whose back is fitted 8 mm inside its carcass's front (a carcass front fitted proud, seen
+    only in the gaps): the carcass yields behind the door, the door keeps its whole fitted board. Thinning the
+    door instead (its hinge-side back 8 mm short) lets a robot link pass where the real door's back is: kitchen
+    5 realistic, doors 2 and 8, fail their truth in the retreat and certify with their thickness kept."""
     obj = _cabinet(door_back_y=0.008)          # 8 mm inside the body's front y = 0
     (new,), walls = cleared_scene([obj], (), ClearanceConfig())
     door = new.part(2).solids[0]
-    lo, hi = door.corners().min(axis=0), door.corners().max(axis=0)
-    assert hi[1] == pytest.approx(0.0, abs=1e-9)              # its back now on the body's front
-    assert lo[1] == pytest.approx(0.008 - 0.018, abs=1e-9)    # its outer face where it was seen
+    assert door.isclose(obj.part(2).solids[0])                     # the door as fitted, front and back
     assert new.part(2).primitive.isclose(obj.part(2).primitive)    # the fitted primitive is kept (metrics)
-    assert new.part(1).solids[0].isclose(obj.part(1).solids[0])   # the static body is not cut
+    body = new.part(1).solids[0].corners()
+    assert body[:, 1].min() == pytest.approx(0.008, abs=1e-9)      # the body's front now on the door's back
     assert separation(new.part(1).solids[0], door) >= -1e-9
 
 
