@@ -7,8 +7,8 @@ The scene URDF is loaded as a pinocchio model too and appended to the robot mode
 articulation state is part of the configuration: the task joint takes the value ``s`` of the check, every
 other scene joint the value of ``scene_state``. A check covers robot self-collision (non-adjacent,
 non-ignored link pairs), robot vs floor (a half-space on the scene's floor) and robot vs every scene geometry,
-through pinocchio's broad-phase manager (coal's sorted sweep-and-prune, :data:`BROADPHASE`), all in C++
-(~20k checks/s). Every call increments :attr:`PlanningWorld.checks`.
+through pinocchio's broad-phase manager (coal's sorted sweep-and-prune, :data:`BROADPHASE`), all in C++.
+Every call increments :attr:`PlanningWorld.checks`.
 
 Frames: the world is the scene URDF's frame. The robot's root link stands at the floor frame's origin
 (:meth:`RobotKinematics.standing_on`, :attr:`scenes.description.SceneFloor.T_scene_floor`; the world origin
@@ -39,9 +39,9 @@ __all__ = ["LIMIT_TOLERANCE", "PlanningWorld", "RobotKinematics"]
 #: the broad phase of every planning check. Any broad phase gives the same answer: it only skips pairs whose
 #: bounding boxes, grown by each pair's security margin, stay apart, so a check is true exactly when some active
 #: pair is closer than its margin (coal's narrow phase on that pair). Coal's simple sweep-and-prune sorts the
-#: boxes along one axis once per check; the dynamic AABB tree rebuilds itself at every check: 1.6x the cost of a
-#: check on a kitchen (~110 geometries) and more on larger scenes (measured in docs/decisions.md). (Coal's plain
-#: SaP manager is NOT used: on a kitchen it answered 2 of 3,628 checks differently from the others.)
+#: boxes along one axis once per check; the dynamic AABB tree rebuilds itself at every check, which costs more
+#: (measured in docs/decisions.md, "Planning CPU"). Coal's plain SaP manager is NOT used: it answered some
+#: checks differently from the others (docs/decisions.md).
 BROADPHASE = pin.BroadPhaseManager_SSaPCollisionManager
 
 #: how far (rad or m) a configuration may lie beyond a joint limit and still count as within it: a robot
