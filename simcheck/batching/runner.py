@@ -34,7 +34,7 @@ from simcheck.batching.manifest import Entry
 from simcheck.batching.store import Store
 from simcheck.robot_spec_file import is_named_robot
 
-__all__ = ["Job", "RunSettings", "run_jobs", "jobs_for_entries", "all_movable_tasks", "chunk_size", "MAX_CHUNK", "ray_session", "ray_cpu_seconds", "BACKSTOP_FACTOR", "BACKSTOP_SECONDS"]
+__all__ = ["Job", "RunSettings", "run_jobs", "worker_args", "jobs_for_entries", "all_movable_tasks", "chunk_size", "MAX_CHUNK", "ray_session", "ray_cpu_seconds", "BACKSTOP_FACTOR", "BACKSTOP_SECONDS"]
 
 log = logging.getLogger(__name__)
 
@@ -346,6 +346,12 @@ def run_jobs(jobs: list[Job], store: Store, settings: RunSettings, slots: int, m
     return progress
 
 
+def worker_args(job: Job, store: Store, settings: RunSettings) -> dict:
+    """What a worker gets for ``job`` (:func:`simcheck.batching.worker.certify_job`'s ``job``)."""
+    return {**job.args, "store": str(store.root), "key": job.key, "row": job.row, "attempt": job.attempt,
+            "timeout": settings.task_timeout, "memory_mb": settings.task_memory_mb, "images": settings.images}
+
+
 def _next_chunk(queue: deque, size: int) -> list[Job]:
     """Take up to ``size`` jobs of one scene (and reference) from the front of ``queue``."""
     chunk = [queue.popleft()]
@@ -371,9 +377,7 @@ def _dispatch(pending: list[Job], store: Store, settings: RunSettings, slots: in
     while queue or inflight:
         while queue and len(inflight) < slots:
             chunk = _next_chunk(queue, settings.chunk or chunk_size(len(queue), slots))
-            args = [{**job.args, "store": str(store.root), "key": job.key, "row": job.row, "attempt": job.attempt,
-                     "timeout": settings.task_timeout, "memory_mb": settings.task_memory_mb,
-                     "images": settings.images} for job in chunk]
+            args = [worker_args(job, store, settings) for job in chunk]
             inflight[remote.remote(args)] = (chunk, time.monotonic())
         refs = list(inflight)
         ready, _ = ray.wait(refs, num_returns=1, timeout=1.0)
