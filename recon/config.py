@@ -376,7 +376,8 @@ class JointConfig:
     """Other objects' primitives are sampled about this densely (m) as obstacles of the sweeps."""
     hinge_edge_band: float = 0.02
     """Points within this (m) of a door's hinge edge, across it, show where the door meets its carcass
-    (hinge_depth.py): the carcass's side face behind an overlay door, its front face beside an inset one."""
+    (hinge_depth.py): the carcass's side face behind an overlay door, its front face beside an inset one
+    (and, when the hinge edge shows too few points, the carcass's faces at the door's other edges)."""
     hinge_edge_trim: float = 0.03
     """... leaving out this much (m) at each end of the hinge edge (the carcass's top and bottom panels)."""
     hinge_edge_min_points: int = 10

@@ -25,8 +25,12 @@ is decided by the door and its carcass, which the scan shows at the hinge edge:
   edge, level with the door's front), or a door with another front level with it just beyond its hinge
   edge (an oven door above its drawer): a door pivoting behind its front face would sweep its front
   corner at the hinge edge across that edge, into the face beside it; it can only pivot at its front face.
-- Neither shown (the carcass's side is hidden, e.g. by a neighbour, and nothing stands beside the hinge
-  edge): the board rule stays.
+- The carcass's side face at the hinge edge hidden (a neighbour stands against it, the camera never saw
+  that side): the door's back face rests on the carcass's front all around, so the carcass's faces that
+  continue the door's other edges (its top and bottom panels, the side face at the free edge, seen in the
+  same windows) begin at the same depth and are tested the same way. The hinge edge stays the first
+  witness: its own points decide whenever it has enough.
+- None of them shown: the board rule stays.
 
 All depths are measured along the opening's outward normal, from the door box's front face, in metres.
 """
@@ -75,27 +79,35 @@ class HingeDepth:
 
 def hinge_depth(front: float, board: float, normal: np.ndarray, out: np.ndarray, edge: float,
                 axis: np.ndarray, span: tuple[float, float], seen: SeenPoints | None,
-                config: JointConfig, noise: float = 0.0) -> HingeDepth:
+                config: JointConfig, noise: float = 0.0, edges: tuple = ()) -> HingeDepth:
     """The hinge line's depth behind the door's front face (see the module docstring).
 
     front : the door's front face along ``normal`` (3,) (unit, outward), m; board : the depth the door
     box's back face has (the board rule); out : (3,) unit, in the door's plane, pointing out of the door
     across its hinge edge, which lies at ``edge`` (m) along it; axis : (3,) the hinge's direction, the
     door spanning ``span`` (lo, hi) m along it; seen : the points (None: the board rule); noise : m, the
-    depth noise of the door's points across its face (:mod:`recon.depth_noise`).
+    depth noise of the door's points across its face (:mod:`recon.depth_noise`); edges : the door's edges,
+    each as (out, edge, axis, span) like the hinge edge's, whose carcass faces witness the door's back face
+    when the hinge edge shows too few points (empty: the hinge edge alone).
     """
     board_rule = HingeDepth(board, 0.0, "board")
     if seen is None:
         return board_rule
     band, trim, n_min = config.hinge_edge_band, config.hinge_edge_trim, config.hinge_edge_min_points
 
-    def window(p):
+    def window(p, out=out, edge=edge, axis=axis, span=span):
         depth = front - p @ normal
         across = p @ out - edge
         along = p @ axis
         keep = ((np.abs(across) <= band) & (along >= span[0] + trim) & (along <= span[1] - trim)
                 & (depth >= -band) & (depth <= config.door_max_thickness + band))
         return keep, depth, across
+
+    def pooled(p):
+        keep, depth, _ = window(p)
+        for e in edges:
+            keep |= window(p, *e)[0]
+        return keep, depth
 
     if seen.others is not None and len(seen.others):
         # inset: the carcass's (or another front's) face beside the hinge edge, level with the door's front
@@ -109,6 +121,9 @@ def hinge_depth(front: float, board: float, normal: np.ndarray, out: np.ndarray,
         return board_rule
     kb, db, _ = window(seen.body)
     kd, dd, _ = window(seen.door)
+    if edges and (kb.sum() < n_min or kd.sum() < n_min):     # the hinge edge not seen: the door's other edges
+        kb, db = pooled(seen.body)
+        kd, dd = pooled(seen.door)
     d_door, d_body = np.sort(dd[kd]), np.sort(db[kb])
     if len(d_door) < n_min or len(d_body) < n_min:
         return board_rule

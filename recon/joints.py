@@ -140,7 +140,9 @@ def hinge_line(parent: Primitive, door: Primitive, handles: list[Primitive], nor
     if seen is not None and seen.door is not None and len(seen.door):
         nrm = None if seen.door_normals is None else seen.door_normals @ door.T_world_part[:3, :3]
         noise = seen_face(door.to_part(seen.door), door.size, config.hinge_edge_min_points, nrm).sigma
-    depth = hinge_depth(front, front - back, normal, out, edge, axis, span, seen, config, noise)
+    edges = ((-h, -lo_h, v, (lo_v, hi_v)), (h, hi_h, v, (lo_v, hi_v)), (-v, -lo_v, h, (lo_h, hi_h)),
+             (v, hi_v, h, (lo_h, hi_h)))     # the door's four edges: (out of the door, where, along, span)
+    depth = hinge_depth(front, front - back, normal, out, edge, axis, span, seen, config, noise, edges)
     origin = origin + (front - depth.depth - c @ normal) * normal
     if depth.how != "board":
         desc += f", {depth.depth * 1000:.0f} mm behind its front ({depth.how})"
