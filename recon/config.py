@@ -199,6 +199,15 @@ class FittingConfig:
     """Face planes of one object whose yaws (modulo 90 deg) agree within this (rad, 2 deg) are taken as
     faces of one rigid box frame (:func:`recon.object_yaw.measured_yaw`); an opened door, the strip of a
     round leg, a box fitted across a leg's corners do not join them."""
+    post_face_min_points: int = 4
+    """A post's (leg's) face is placed at the median of the points whose normals point out of it when it has
+    this many (recon.post_section; at ScanNet density a 4 cm leg shows 6-60 points a face)."""
+    post_axial_share: float = 0.7
+    """... a post whose horizontal normals lie within 18 deg of its base's axes in this share or more has a
+    box section (about 1 on a box leg, 0.4 on a round one), else a round one."""
+    post_min_slenderness: float = 2.0
+    """... a part whose points stand less than this many times its section's width tall is no post (a
+    pedestal table's foot disc) and keeps its Eq. 3 fit."""
     panel_ratio: float = 0.3
     """A part whose thinnest extent is below this fraction of the next one is a panel (a door or drawer
     front): its thin axis is the opening's normal (fitting, joints and refinement read it)."""

@@ -11,7 +11,8 @@ Stages, in order (each a function below; per-object state travels in an :class:`
     fit_primitives     Eq. 3: the best primitive per part, the base part first; a fit that does not cover
                        its points is refitted with the other kinds (fitting.py, coverage.py); a base box
                        tilted off the up direction or turned off the yaw its object's faces show is refitted
-                       along them (object_up.py, object_yaw.py)
+                       along them (object_up.py, object_yaw.py); a leg's section from its faces' points
+                       (post_section.py)
     complete_parts     hidden legs placed; legs, reaching and mounted parts extended (completion.py)
     contact_graph      surface planes Π, then the Eq. 1 contacts between parts (planes.py, contacts.py)
     build_part_tree    Eq. 4: the maximum spanning arborescence of the contacts (part_tree.py)
@@ -42,8 +43,8 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from recon.clearance import cleared_scene
-from recon.completion import (complete_missing_legs, complete_mounted_parts, complete_reaching_parts,
-                              complete_vertical_parts)
+from recon.completion import (VERTICAL_SPAN_LABELS, complete_missing_legs, complete_mounted_parts,
+                              complete_reaching_parts, complete_vertical_parts)
 from recon.config import ReconConfig
 from recon.contacts import contact_edges
 from recon.coverage import coverage, coverage_problems
@@ -62,6 +63,7 @@ from recon.outliers import scan_without_outliers
 from recon.part_shapes import template_shapes
 from recon.part_tree import PartTree, choose_root, part_distances, part_tree
 from recon.planes import part_planes
+from recon.post_section import post_primitive
 from recon.primitive import Primitive, PrimitiveKind
 from recon.refinement import refine_parts
 from recon.scan import ObjectPoints, PartPoints, Scan, read_scan
@@ -307,7 +309,9 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     (:func:`recon.fitting.fit_part_covering`); one still outside them is named in a warning by
     :func:`check_coverage`. A base box turned off the up direction or the yaw its object's faces show is
     refitted along them (:func:`_base_along_measured_frame`). A body whose points show one face only is
-    given a depth behind it (:func:`recon.fitting.body_behind_face`), with a warning."""
+    given a depth behind it (:func:`recon.fitting.body_behind_face`), with a warning. A leg's section is
+    measured from its faces' points (:func:`recon.post_section.post_primitive`), not judged by Eq. 3: depth
+    noise as wide as the leg makes its points a blob whose spread Eq. 3 fits."""
     config = run.config.fitting
     labels = {p.part_id: p.label for p in obj.parts}
     base = choose_root(labels, {p.part_id: float(len(p.points)) for p in obj.parts})
@@ -347,6 +351,13 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     for p in obj.parts:
         if p.part_id in small:
             fit(p, R_ref)
+    for p in obj.parts:
+        if p.label in VERTICAL_SPAN_LABELS and p.part_id != base:
+            post = post_primitive(p.points, p.normals, R_ref, fitted[p.part_id][1], config)
+            if post is not None:
+                rng = np.random.default_rng(_part_seed(run.seed, p.part_id))
+                fitted[p.part_id] = ("post", post, score_primitive(post, p.points, cKDTree(p.points), config, rng),
+                                     fitted[p.part_id][3])
     for p in sorted(obj.parts, key=lambda p: p.part_id != base):
         name, prim, score, table = fitted[p.part_id]
         state.fits[p.part_id] = FittedPart(prim, score, table, len(p.points))
