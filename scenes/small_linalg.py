@@ -1,5 +1,5 @@
-"""``numpy.linalg.solve``, ``inv`` and ``eigh`` for the small float64 matrices of inner loops (IK steps,
-the grasp spring of every physics step), without numpy's per-call argument checks.
+"""``numpy.linalg.solve``, ``inv``, ``eigh`` and ``norm`` for the small float64 matrices and vectors of inner
+loops (IK steps, the grasp spring of every physics step), without numpy's per-call argument checks.
 
 Each calls the same LAPACK kernel as its ``numpy.linalg`` namesake (numpy's own ``_umath_linalg``
 gufunc), so the result is the same to the bit; on 3x3 to 6x6 matrices a call costs ~8 us instead of
@@ -10,9 +10,11 @@ errors are numpy's too. Without ``_umath_linalg`` (a numpy that renames it) thes
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["solve", "inv", "eigh"]
+__all__ = ["solve", "inv", "eigh", "norm"]
 
 try:
     from numpy.linalg import _umath_linalg as _kernels
@@ -48,3 +50,10 @@ def eigh(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     if np.isfinite(w).all() and np.isfinite(v).all():
         return w, v
     return tuple(np.linalg.eigh(a))
+
+
+def norm(x: np.ndarray) -> float:
+    """``float(numpy.linalg.norm(x))`` for a float64 vector ``x (n,)``: the same ``sqrt(x.dot(x))`` numpy
+    computes (both square roots are IEEE's, correctly rounded), without its argument handling (~0.8 us
+    instead of ~2.3)."""
+    return math.sqrt(x.dot(x))

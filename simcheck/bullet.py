@@ -23,33 +23,48 @@ __all__ = ["movable_joints", "point_jacobian", "jacobian_point", "mass_matrix", 
            "point_state"]
 
 
+#: capture files of :func:`c_output_logged` not in use (creating one per call cost more than most PyBullet calls
+#: it wraps); a forked child starts with none of its parent's, whose file offsets it would share
+_spare_sinks: list = []
+_libc = None
+os.register_at_fork(after_in_child=_spare_sinks.clear)
+
+
 @contextlib.contextmanager
 def c_output_logged(what: str):
     """Send what C code writes to fd 1/2 inside the block (PyBullet's banner, its URDF importer's
     warnings and parse errors) to this module's logger (debug level) instead of the user's terminal.
 
     Yields a list that holds that text (one string) once the block has ended, for error messages."""
-    import ctypes
+    global _libc
+    if _libc is None:
+        import ctypes
 
-    libc = ctypes.CDLL(None)
+        _libc = ctypes.CDLL(None)
+    try:
+        sink = _spare_sinks.pop()
+    except IndexError:
+        sink = tempfile.TemporaryFile()
     saved = [os.dup(fd) for fd in (1, 2)]
     said: list[str] = []
-    with tempfile.TemporaryFile() as sink:
-        try:
-            libc.fflush(None)
-            for fd in (1, 2):
-                os.dup2(sink.fileno(), fd)
-            yield said
-        finally:
-            libc.fflush(None)
-            for fd, keep in zip((1, 2), saved):
-                os.dup2(keep, fd)
-                os.close(keep)
-            sink.seek(0)
-            text = sink.read().decode(errors="replace").strip()
-            said.append(text)
-            if text:
-                logging.getLogger(__name__).debug("%s: pybullet wrote: %s", what, text)
+    try:
+        sink.seek(0)
+        sink.truncate()
+        _libc.fflush(None)
+        for fd in (1, 2):
+            os.dup2(sink.fileno(), fd)
+        yield said
+    finally:
+        _libc.fflush(None)
+        for fd, keep in zip((1, 2), saved):
+            os.dup2(keep, fd)
+            os.close(keep)
+        sink.seek(0)
+        text = sink.read().decode(errors="replace").strip()
+        _spare_sinks.append(sink)
+        said.append(text)
+        if text:
+            logging.getLogger(__name__).debug("%s: pybullet wrote: %s", what, text)
 
 
 def pybullet_said(said: list[str]) -> str:

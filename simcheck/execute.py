@@ -46,6 +46,7 @@ import numpy as np
 from planners.handle import handle_link
 from planners.scene_urdf import read_scene_urdf
 from planners.task import PUSH_SEGMENT_NAMES, SEGMENT_NAMES, PlanResult, Segment
+from scenes.small_linalg import norm as vector_norm
 from simcheck.config import DEFAULT_PHYSICS, PhysicsConfig
 from simcheck.frozen_bodies import FreezeGuard, far_parts
 from simcheck.grasp import grasp_formation, round_bar_axis
@@ -287,8 +288,8 @@ class _Recorder:
         r["grasp_turn"].append(self.turn(T_handle))
         r["planned_tool_pos"].append(np.array(self.planned_tool, dtype=float))
         r["planned_object_q"].append(self.planned_object_q)
-        r["link_speed"].append(float(np.linalg.norm(v)))
-        r["link_angular_speed"].append(float(np.linalg.norm(om)))
+        r["link_speed"].append(vector_norm(v))
+        r["link_angular_speed"].append(vector_norm(om))
         r["grasp_active"].append(w.attached)
         r["grasp_force"].append(self.peak)
         self.peak = self.mean

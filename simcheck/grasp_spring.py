@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from scenes.small_linalg import eigh, inv
+from scenes.small_linalg import eigh, inv, norm as vector_norm
 
 __all__ = ["GraspSpring", "spring_force", "cartesian_stiffness", "stable_stiffness", "stable_damping"]
 
@@ -113,13 +113,13 @@ def spring_force(spring: GraspSpring, p_held: np.ndarray, v_held: np.ndarray, p_
     stretch = p_tool - p_held
     f_spring = K @ stretch
     f = f_spring + min(spring.damping, spring.max_damping) * (v_tool - v_held)
-    norm = float(np.linalg.norm(f))
+    norm = vector_norm(f)
     spring.force = norm
     slide_to = None
     if norm > spring.cap:
         f *= spring.cap / norm
         spring.slid = True
-        pull = float(np.linalg.norm(f_spring))
+        pull = vector_norm(f_spring)
         if pull > spring.cap:
             slide_to = p_tool - stretch * (spring.cap / pull)
     return f, slide_to

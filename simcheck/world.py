@@ -88,6 +88,7 @@ class World:
         self._q_target: np.ndarray | None = None
         self._movable: list[int] | None = None
         self._tool_jac_point: list[float] | None = None
+        self._effort_limits: np.ndarray | None = None
         self._frozen: dict[str, float] = {}                     # frozen scene joint -> its value
         self._frozen_pose: dict[str, np.ndarray] = {}           # frozen scene link -> T_world_link
         self._frozen_parts: list = []                           # the frozen parts, to load again
@@ -196,7 +197,9 @@ class World:
         """(dof,) the motor torque (force for a prismatic joint) each controlled joint applied in the last step,
         as a share of its effort limit (the URDF effort the motor is capped at, :meth:`command_robot`)."""
         states = pb.getJointStates(self.robot, self._robot.q_index, physicsClientId=self.client)
-        return np.abs(np.array([s[3] for s in states], dtype=float)) / np.asarray(self._robot.forces, dtype=float)
+        if self._effort_limits is None:     # read every physics step: the limits as an array once
+            self._effort_limits = np.asarray(self._robot.forces, dtype=float)
+        return np.abs(np.array([s[3] for s in states], dtype=float)) / self._effort_limits
 
     def finger_q(self) -> np.ndarray:
         """(n_fingers,) finger joint positions."""

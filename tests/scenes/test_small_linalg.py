@@ -22,6 +22,18 @@ def test_same_bits_as_numpy_linalg(n):
     assert np.array_equal(small_linalg.inv(view), np.linalg.inv(view))
 
 
+def test_vector_norm_same_bits_as_numpy():
+    rng = np.random.default_rng(1)
+    for scale in (1e-300, 1e-12, 1.0, 1e6, 1e150):
+        for n in (1, 3, 6):
+            for _ in range(200):
+                x = rng.normal(size=n) * scale
+                assert small_linalg.norm(x) == float(np.linalg.norm(x))
+    assert small_linalg.norm(np.zeros(3)) == 0.0
+    assert np.isnan(small_linalg.norm(np.array([1.0, np.nan, 0.0])))
+    assert small_linalg.norm(np.array([np.inf, 0.0, 1.0])) == np.inf
+
+
 def test_singular_matrix_raises_numpys_error():
     with pytest.raises(np.linalg.LinAlgError):
         small_linalg.solve(np.zeros((3, 3)), np.ones(3))
