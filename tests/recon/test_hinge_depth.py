@@ -55,8 +55,8 @@ def _cabinet(kind: str) -> tuple[Scene, np.ndarray]:
         contacts.append((12, 13))
     objs = (ArticulatedObject(1, "cabinet", tuple(parts), tuple(joints), tuple(contacts)),)
     if kind == "overlay_hidden_side":
-        objs += (ArticulatedObject(2, "cabinet", (Part(21, "body", np.eye(4), (_box([X0, Y + 0.001, 0], [X1, Y + 0.5, 1.2]),),
-                                                        500.0),), (Joint(JointType.FIXED, None, 21),), ()),)
+        cupboard = Part(21, "body", np.eye(4), (_box([X0, Y + 0.001, 0], [X1, Y + 0.5, 1.2]),), 500.0)
+        objs += (ArticulatedObject(2, "cabinet", (cupboard,), (Joint(JointType.FIXED, None, 21),), ()),)
     return Scene(f"thick_{kind}", 0, objs, (), np.array([6.0, 6.0])), hinge
 
 
@@ -122,11 +122,20 @@ def _hinge_edge(thickness: float, per_cm: int, seed: int) -> SeenPoints:
     depth noise is 22 mm: the door's front face by 15,000 points, its edge strip and its carcass's side face (from
     the door's back face, ``thickness`` m behind its front, to 0.5 m) by ``per_cm`` points per cm of depth;
     labels swapped with probability 0.3 within 15 mm of the seam (label bleed)."""
+    return _noisy_seam(thickness, per_cm, seed, -0.4,
+                       lambda d, rng: np.c_[d, np.zeros(len(d)), rng.uniform(0.0, 0.7, len(d))])
+
+
+def _noisy_seam(thickness: float, per_cm: int, seed: int, face_lo: float, on_face) -> SeenPoints:
+    """A door's front face (x = 0, y in [``face_lo``, 0], z in [0, 0.7]) by 15,000 points, and a face across
+    the seam: ``on_face(depths (k,), rng)`` -> (k, 3) points at those depths, the door's own edge strip from its
+    front to ``thickness`` and its carcass's face behind it to 0.5 m, ``per_cm`` points per cm of depth; labels
+    swapped with probability 0.3 within 15 mm of the seam, every point moved along the depth by 22 mm noise."""
     rng = np.random.default_rng(seed)
-    face = np.c_[np.zeros(15000), rng.uniform(-0.4, 0.0, 15000), rng.uniform(0.0, 0.7, 15000)]
+    face = np.c_[np.zeros(15000), rng.uniform(face_lo, 0.0, 15000), rng.uniform(0.0, 0.7, 15000)]
     n_strip, n_side = int(100 * per_cm * thickness), int(100 * per_cm * (0.5 - thickness))
-    strip = np.c_[rng.uniform(0.0, thickness, n_strip), np.zeros(n_strip), rng.uniform(0.0, 0.7, n_strip)]
-    side = np.c_[rng.uniform(thickness, 0.5, n_side), np.zeros(n_side), rng.uniform(0.0, 0.7, n_side)]
+    strip = on_face(rng.uniform(0.0, thickness, n_strip), rng)
+    side = on_face(rng.uniform(thickness, 0.5, n_side), rng)
     bleed = lambda p: (np.abs(p[:, 0] - thickness) < 0.015) & (rng.random(len(p)) < 0.3)  # noqa: E731
     b_strip, b_side = bleed(strip), bleed(side)
     door = np.concatenate([face, strip[~b_strip], side[b_side]])
@@ -155,9 +164,10 @@ def test_a_thick_door_under_the_same_noise_is_still_read_thick(seed):
 
 
 _X, _Y, _Z = np.eye(3)
-# the door of _hinge_edge (front at x = 0, spanning y in [-0.5, 0] and z in [0, 0.7], hinge edge at y = 0): its four
+# the door of _top_edge_only (front at x = 0, spanning y in [-0.5, 0] and z in [0, 0.7], hinge edge at y = 0): its four
 # edges as hinge_depth takes them, (out, edge, axis, span)
-_EDGES = ((_Y, 0.0, _Z, (0.0, 0.7)), (-_Y, 0.5, _Z, (0.0, 0.7)), (_Z, 0.7, _Y, (-0.5, 0.0)), (-_Z, 0.0, _Y, (-0.5, 0.0)))
+_EDGES = ((_Y, 0.0, _Z, (0.0, 0.7)), (-_Y, 0.5, _Z, (0.0, 0.7)),
+          (_Z, 0.7, _Y, (-0.5, 0.0)), (-_Z, 0.0, _Y, (-0.5, 0.0)))
 
 
 def _top_edge_only(thickness: float, per_cm: int, seed: int) -> SeenPoints:
@@ -165,18 +175,8 @@ def _top_edge_only(thickness: float, per_cm: int, seed: int) -> SeenPoints:
     the door's front face and, at its top edge, the door's top face (from its front to ``thickness``) and the
     carcass's top face behind it (to 0.5 m), ``per_cm`` points per cm of depth, labels swapped with probability
     0.3 within 15 mm of the seam, every point moved along the depth by 22 mm noise."""
-    rng = np.random.default_rng(seed)
-    face = np.c_[np.zeros(15000), rng.uniform(-0.5, 0.0, 15000), rng.uniform(0.0, 0.7, 15000)]
-    n_strip, n_top = int(100 * per_cm * thickness), int(100 * per_cm * (0.5 - thickness))
-    strip = np.c_[rng.uniform(0.0, thickness, n_strip), rng.uniform(-0.5, 0.0, n_strip), np.full(n_strip, 0.7)]
-    top = np.c_[rng.uniform(thickness, 0.5, n_top), rng.uniform(-0.5, 0.0, n_top), np.full(n_top, 0.7)]
-    bleed = lambda p: (np.abs(p[:, 0] - thickness) < 0.015) & (rng.random(len(p)) < 0.3)  # noqa: E731
-    b_strip, b_top = bleed(strip), bleed(top)
-    door = np.concatenate([face, strip[~b_strip], top[b_top]])
-    body = np.concatenate([top[~b_top], strip[b_strip]])
-    door[:, 0] += rng.normal(0.0, 0.022, len(door))
-    body[:, 0] += rng.normal(0.0, 0.022, len(body))
-    return SeenPoints(door, body)
+    return _noisy_seam(thickness, per_cm, seed, -0.5,
+                       lambda d, rng: np.c_[d, rng.uniform(-0.5, 0.0, len(d)), np.full(len(d), 0.7)])
 
 
 def _depth_from_top_edge(seen: SeenPoints, edges=_EDGES):
