@@ -22,11 +22,8 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import logging
-import os
-import shutil
 import tempfile
 import threading
-import weakref
 from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
@@ -103,8 +100,8 @@ def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig, visuals: bo
     parts: dict[int, _Body] = {}
     with tempfile.TemporaryDirectory(prefix="partscene_scene_") as tmp:
         for k, part in enumerate(_bodies(scene_urdf, tmp)):
-            body = _load_part(c, part, flags if part.moving else plain, f"a part of scene URDF {scene_urdf}",
-                              Path(tmp) / f"body{k}.urdf")
+            body = _load_part(c, Path(tmp) / f"body{k}.urdf", part, flags if part.moving else plain,
+                              f"a part of scene URDF {scene_urdf}")
             bj, bl = _register(c, body, link_at, names, joint_at)
             if not part.moving:
                 static_pose[next(iter(bl))] = link_pose(c, body, -1)
@@ -123,13 +120,8 @@ def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig, visuals: bo
         rest_contacts=resting, parts=parts, flags=flags)
 
 
-def _load_part(c: int, part: "_Body", flags: int, what: str, path: Path | None = None) -> int:
-    """Load ``part`` into ``c`` from a file holding its URDF: ``path`` (written) when the URDF uses mesh pieces of
-    ``path``'s folder, else the process's kept file of that text (:func:`_part_file`)."""
-    if path is not None and str(path.parent) in part.urdf:
-        path.write_text(part.urdf)
-    else:
-        path = _part_file(part.urdf)
+def _load_part(c: int, path: Path, part: "_Body", flags: int, what: str) -> int:
+    path.write_text(part.urdf)
     try:
         with c_output_logged(f"loading {what}") as said:
             return pb.loadURDF(str(path), part.position, part.quat_xyzw, useFixedBase=True, flags=flags,
@@ -183,7 +175,8 @@ def reload_part(client: int, scene: LoadedScene, part: "_Body", config: PhysicsC
     with its ancestors and with the links it touched at rest) with its joints at ``joint_values`` (name ->
     m or rad), at rest; enter it into ``scene``'s name tables. Returns its new body id."""
     c = client
-    body = _load_part(c, part, scene.flags, "a scene part again")
+    with tempfile.TemporaryDirectory(prefix="partscene_part_") as tmp:
+        body = _load_part(c, Path(tmp) / "part.urdf", part, scene.flags, "a scene part again")
     joint_at: dict[str, tuple[int, int]] = {}
     bj, bl = _register(c, body, scene.link_at, scene.names, joint_at)
     joints = {name: scene.joints[name] for name in bj}
@@ -217,53 +210,6 @@ class _Body:
 BODIES_KEPT = 8
 _kept_bodies: OrderedDict[tuple, tuple] = OrderedDict()
 _kept_lock = threading.Lock()
-
-
-#: how many part URDF files :func:`_part_file` keeps
-PART_FILES_KEPT = 4096
-_part_files: OrderedDict[str, Path] = OrderedDict()
-
-
-class _PartsFolder:
-    """The folder of :func:`_part_file`'s files, removed when the process exits."""
-
-    def __init__(self) -> None:
-        self.path = Path(tempfile.mkdtemp(prefix="partscene_parts_"))
-        self.finalizer = weakref.finalize(self, shutil.rmtree, str(self.path), ignore_errors=True)
-
-
-_parts_dir: list[_PartsFolder] = []     # the folder, once made
-
-
-def _part_file(urdf: str) -> Path:
-    """A file holding the URDF text ``urdf``, written once per process into a folder of its own (removed at
-    exit): a certification loads each of a scene's parts from a file, and a batch worker loads the same
-    parts for every task (each file written and removed again cost more than PyBullet's parse of it). The
-    last :data:`PART_FILES_KEPT` texts are kept."""
-    with _kept_lock:
-        path = _part_files.get(urdf)
-        if path is not None and path.is_file():
-            _part_files.move_to_end(urdf)
-            return path
-        if not _parts_dir:
-            _parts_dir.append(_PartsFolder())
-        path = _parts_dir[0].path / f"{hashlib.sha1(urdf.encode()).hexdigest()}.urdf"
-        path.write_text(urdf)
-        _part_files[urdf] = path
-        while len(_part_files) > PART_FILES_KEPT:
-            _part_files.popitem(last=False)[1].unlink(missing_ok=True)
-        return path
-
-
-def _forget_part_files() -> None:
-    """In a forked child: its own folder when it needs one (the parent's stays the parent's to remove)."""
-    if _parts_dir:
-        folder = _parts_dir.pop()         # held while detaching: its last reference would remove the folder
-        folder.finalizer.detach()
-    _part_files.clear()
-
-
-os.register_at_fork(after_in_child=_forget_part_files)
 
 
 def _bodies(scene_urdf: Path, mesh_dir: str) -> tuple:
@@ -322,8 +268,9 @@ def picture_part(client: int, part: "_Body", joint_values: dict[str, float]) -> 
     """Load ``part`` for pictures only: its visual shapes, no collision shape (nothing collides with it, nothing
     of the simulation sees it), joints at ``joint_values`` (name -> m or rad). Returns its body id; remove it
     (``pb.removeBody``) before the next step, the last loaded first."""
-    body = _load_part(client, part, pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_IGNORE_COLLISION_SHAPES,
-                      "a scene part's picture")
+    with tempfile.TemporaryDirectory(prefix="partscene_part_") as tmp:
+        body = _load_part(client, Path(tmp) / "part.urdf", part,
+                          pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_IGNORE_COLLISION_SHAPES, "a scene part's picture")
     joints, _ = body_joint_table(client, body)
     for name, info in joints.items():
         if name in joint_values and info.type in ("revolute", "prismatic"):

@@ -34,37 +34,3 @@ def test_kept_bodies_load_the_same_and_a_changed_file_is_split_anew(tmp_path, mo
     assert _loaded(urdf) == first and len(splits) == 1
     urdf.write_text(urdf.read_text().replace("<robot ", "<!-- changed -->\n<robot ", 1))
     assert _loaded(urdf) == first and len(splits) == 2
-
-
-def test_part_files_are_written_once_per_process_and_written_again_when_gone(tmp_path, monkeypatch):
-    urdf = tmp_path / "cabinet.urdf"
-    shutil.copy(CABINET, urdf)
-    monkeypatch.setattr(scene_loading, "_part_files", type(scene_loading._part_files)())
-    first = _loaded(urdf)
-    files = list(scene_loading._part_files.values())
-    assert files and all(p.is_file() for p in files)
-    stamps = [p.stat().st_mtime_ns for p in files]
-    assert _loaded(urdf) == first
-    assert list(scene_loading._part_files.values()) == files and [p.stat().st_mtime_ns for p in files] == stamps
-    files[0].unlink()                                 # a kept file removed under the process: written again
-    assert _loaded(urdf) == first and files[0].is_file()
-
-
-def test_a_forked_child_keeps_its_part_files_apart_and_leaves_the_parents(tmp_path):
-    import os
-
-    urdf = tmp_path / "cabinet.urdf"
-    shutil.copy(CABINET, urdf)
-    _loaded(urdf)
-    folder = scene_loading._parts_dir[0].path
-    pid = os.fork()
-    if pid == 0:                                      # the child: a folder of its own, removed at its exit
-        try:
-            _loaded(urdf)
-            ok = scene_loading._parts_dir[0].path != folder
-        except BaseException:
-            ok = False
-        os._exit(0 if ok else 1)
-    _, status = os.waitpid(pid, 0)
-    assert os.waitstatus_to_exitcode(status) == 0
-    assert folder.is_dir() and all(p.is_file() for p in scene_loading._part_files.values())
