@@ -213,13 +213,13 @@ def score_primitive(prim: Primitive, points: np.ndarray, tree: cKDTree, config: 
 
 
 def denoised_box(prim: Primitive, points: np.ndarray, config: FittingConfig,
-                 normals: np.ndarray | None = None) -> Primitive:
+                 normals: np.ndarray | None = None, front: bool = False) -> Primitive:
     """The box with its extents corrected for depth noise (see :func:`_denoised`)."""
-    return _denoised(prim, points, config, normals)[0]
+    return _denoised(prim, points, config, normals, front)[0]
 
 
 def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
-              normals: np.ndarray | None = None) -> tuple[Primitive, bool]:
+              normals: np.ndarray | None = None, front: bool = False) -> tuple[Primitive, bool]:
     """The box with its extents corrected for depth noise.
 
     The noise σ is the robust spread (1.4826 × MAD) of the points about the box face that holds the
@@ -246,13 +246,22 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
     A slab (a board, a table top) seen on one face and its edges gets its thickness from its edges
     (:func:`_slab_box`); a box seen on two or three faces has each seen face pulled in like the best one.
 
+    front : the part is a front by its label (a drawer, a door: a panel seen from before it). The face the
+    camera saw best is then the one most of its points' ``normals`` point out of, not the box face most
+    points lie nearest: a front's noise slab as deep as the front is tall (3.5 cm voxels, sigma 2-3 cm)
+    gives most of its points to the box's top and bottom faces, and the noise correction across those
+    collapsed the front into a horizontal film (then refused by the coverage check and refitted as a
+    cylinder).
+
     Returns (box, whether the front rule placed it).
     """
     if prim.kind is not PrimitiveKind.BOX:
         return prim, False
     q = prim.to_part(points)
     # the face the camera saw best and the depth noise across it (both halves of an inflated slab)
-    best = seen_face(q, prim.size, config.min_face_points)
+    by_normals = front and normals is not None and len(normals) == len(q)
+    best = seen_face(q, prim.size, config.min_face_points,
+                     normals @ prim.T_world_part[:3, :3] if by_normals else None)
     f, k, sigma, r, seen_mask = best.face, best.axis, best.sigma, best.across, best.mask
     if sigma < config.noise_floor:
         # a clean scan: nothing to correct, but a front seen only by its face is a board, not a film; a
@@ -298,8 +307,8 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
         lo[k], hi[k] = seen - config.min_thickness / 2, seen + config.min_thickness / 2
     face_mask = _facing(normals, seen_mask, prim.T_world_part[:3, k], config)
     side = _seen_side(normals, face_mask, prim.T_world_part[:3, k])
-    front = side is not None and _vertical_panel(lo, hi, k, prim.T_world_part[:3, :3], config)
-    if front:
+    is_front = side is not None and _vertical_panel(lo, hi, k, prim.T_world_part[:3, :3], config)
+    if is_front:
         # a front (door, drawer front) seen from one side: its in-plane edges at the half-density of its
         # face, its seen face at the median of that face's points, the board's thickness behind it
         for a in range(3):
@@ -324,7 +333,7 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
         if hi[a] - lo[a] < config.min_thickness:
             mid = (hi[a] + lo[a]) / 2
             lo[a], hi[a] = mid - config.min_thickness / 2, mid + config.min_thickness / 2
-    return _box_between(prim, lo, hi), front
+    return _box_between(prim, lo, hi), is_front
 
 
 def _box_between(prim: Primitive, lo: np.ndarray, hi: np.ndarray) -> Primitive:
@@ -553,13 +562,15 @@ def _icp_refined(prim: Primitive, score: FitScore, points: np.ndarray, normals: 
 
 
 def fit_part(points: np.ndarray, config: FittingConfig, *, seed: int = 0,
-             normals: np.ndarray | None = None, R_world_ref: np.ndarray | None = None, align: bool = True
-             ) -> tuple[str, Primitive, FitScore, dict[str, float]]:
+             normals: np.ndarray | None = None, R_world_ref: np.ndarray | None = None, align: bool = True,
+             front: bool = False) -> tuple[str, Primitive, FitScore, dict[str, float]]:
     """Eq. 3 for one part: ``points`` (n, 3) world -> (winner name, primitive, its score, {name: total}).
 
     Deterministic for a given ``seed``. ``normals`` (n, 3) are estimated when not given.
     ``R_world_ref`` (3, 3): extra candidates aligned with these axes (see candidate_primitives).
     ``align`` False: no ICP, the candidates keep their frames (with ``R_world_ref``: those axes).
+    ``front``: the part is a drawer or door front (its noise correction reads the seen face from the
+    normals, :func:`_denoised`).
     """
     from recon.open3d_engine import estimate_normals
 
@@ -575,7 +586,7 @@ def fit_part(points: np.ndarray, config: FittingConfig, *, seed: int = 0,
     best = None
     table: dict[str, float] = {}
     cands = candidate_primitives(points, config, R_world_ref, normals)
-    cands = {k: denoised_box(v, points, config, normals) for k, v in cands.items()}   # no-op on clean scans
+    cands = {k: denoised_box(v, points, config, normals, front) for k, v in cands.items()}   # no-op on clean scans
     initial = {name: (prim, score_primitive(prim, points, tree, config, np.random.default_rng(seed)))
                for name, prim in cands.items()}
     cutoff = config.icp_candidate_ratio * min(s.total for _, s in initial.values())
@@ -589,11 +600,11 @@ def fit_part(points: np.ndarray, config: FittingConfig, *, seed: int = 0,
             s1 = score_primitive(moved, points, tree, config, np.random.default_rng(seed))
             prim, s = (moved, s1) if s1.total < (1.0 - config.icp_min_improvement) * s0.total else (prim, s0)
         if prim.kind is PrimitiveKind.BOX:
-            variant, front = _denoised(prim, points, config, normals)
+            variant, board = _denoised(prim, points, config, normals, front)
             s2 = score_primitive(variant, points, tree, config, np.random.default_rng(seed))
             # a front's board is not judged by Eq. 3: on a noise slab thicker than the board the score
             # prefers a box centred in the noise (ICP moves it there), half a board too far out
-            prim, s = (variant, s2) if front or s2.total < s.total else (prim, s)
+            prim, s = (variant, s2) if board or s2.total < s.total else (prim, s)
         table[name] = s.total
         # Occam prior: a non-box must beat the boxes by ``box_preference`` (furniture is mostly boxes)
         rank = s.total * (1.0 if prim.kind is PrimitiveKind.BOX else 1.0 + config.box_preference)
@@ -618,14 +629,15 @@ class CoveredFit:
 
 def fit_part_covering(points: np.ndarray, config: FittingConfig, coverage_config: CoverageConfig, *,
                       seed: int = 0, normals: np.ndarray | None = None,
-                      R_world_ref: np.ndarray | None = None) -> CoveredFit:
+                      R_world_ref: np.ndarray | None = None, front: bool = False) -> CoveredFit:
     """:func:`fit_part`, then the fit checked against its points (:mod:`recon.coverage`: mean distance,
     share covered, volume against the points' oriented box); a fit outside the bounds is refitted with
     the candidates of the other kinds (box, cylinder, sphere), kind by kind, until one covers the points.
     When none does, the fit with the fewest problems (the first fit on a tie) is kept with its problems.
     ``points`` (n, 3) world; the other arguments as for :func:`fit_part`."""
     def attempt(cfg):
-        name, prim, score, table = fit_part(points, cfg, seed=seed, normals=normals, R_world_ref=R_world_ref)
+        name, prim, score, table = fit_part(points, cfg, seed=seed, normals=normals, R_world_ref=R_world_ref,
+                                            front=front)
         cov = coverage(prim, prim, points, coverage_config, normals)
         return name, prim, score, table, tuple(coverage_problems(cov, coverage_config))
 

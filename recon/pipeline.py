@@ -69,6 +69,7 @@ from recon.refinement import refine_parts
 from recon.scan import ObjectPoints, PartPoints, Scan, read_scan
 from recon.scene_graph import (object_frame, object_front, proximal_relations, resting_on,
                                support_relations, upright_correction)
+from recon.templates import MOVABLE_LABELS
 from recon.walls import walls_from_background
 from scenes.description import joint_name, link_name, object_name
 
@@ -311,7 +312,8 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     refitted along them (:func:`_base_along_measured_frame`). A body whose points show one face only is
     given a depth behind it (:func:`recon.fitting.body_behind_face`), with a warning. A leg's section is
     measured from its faces' points (:func:`recon.post_section.post_primitive`), not judged by Eq. 3: depth
-    noise as wide as the leg makes its points a blob whose spread Eq. 3 fits."""
+    noise as wide as the leg makes its points a blob whose spread Eq. 3 fits. A drawer's or door's seen face is
+    read from its points' normals (``front`` of :func:`recon.fitting.fit_part`)."""
     config = run.config.fitting
     labels = {p.part_id: p.label for p in obj.parts}
     base = choose_root(labels, {p.part_id: float(len(p.points)) for p in obj.parts})
@@ -324,7 +326,7 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
             run.warn(f"object {obj.id} ({obj.category}) part {p.part_id} ({p.label}): its points are {shape}; "
                      f"the primitive is given the minimum thickness {config.min_thickness} m")
         fit = fit_part_covering(p.points, config, run.config.coverage, seed=_part_seed(run.seed, p.part_id),
-                                normals=p.normals, R_world_ref=R_ref)
+                                normals=p.normals, R_world_ref=R_ref, front=p.label in MOVABLE_LABELS)
         if fit.refused:
             log.info("%s part %d (%s): the fitted %s did not cover its points; refitted as a %s%s", obj.id,
                      p.part_id, p.label, " then ".join(fit.refused), fit.primitive.kind.value,
