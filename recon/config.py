@@ -182,6 +182,11 @@ class FittingConfig:
     bounding box is too noisy to orient them)."""
     box_preference: float = 0.1
     """A cylinder or sphere wins only if its score is lower than the best box's by this fraction."""
+    box_labels: tuple[str, ...] = ("body", "drawer", "door")
+    """Parts with these labels are fitted with box candidates only: a carcass and the drawers and doors that
+    move in its rectangular openings are boxes and boards, whatever Eq. 3 prefers on noisy points (a 7 cm
+    drawer front under 2 cm of depth noise, or a carcass seen on its top and sides, lies nearer a
+    cylinder's curve than a box's edges)."""
     candidates: tuple[str, ...] = ("box", "cylinder_x", "cylinder_y", "cylinder_z", "sphere")
     """Candidate templates M^c: box, a cylinder along each box axis, sphere."""
     base_tilt_tolerance: float = 0.009

@@ -1,8 +1,9 @@
 """The depth noise of a part's points: their robust spread across the face of a box that holds most of them.
 
 A depth camera's noise runs along its rays, i.e. across the faces it sees. Given a box around a part's
-points (its fitted box, or the points' own oriented box), every point is assigned to a box face: the
-face its normal points out of when the normals are given, else the face it is nearest. The face holding
+points (its fitted box, or the points' own oriented box), every point is assigned to a box face: across
+the axis its normal lies along when the normals are given, else the face it is nearest, on the point's
+side of the centre. The face holding
 the most points is the face the camera saw best, and the robust standard deviation (1.4826 x median
 absolute deviation) of those points' coordinates across it is the noise sigma. By nearest face, when
 the opposite face holds the other half of one noisy slab (a thin panel whose box the noise inflated),
@@ -47,23 +48,18 @@ def seen_face(q: np.ndarray, size: np.ndarray, min_face_points: int,
     """The face of the box of edge lengths ``size`` (3,) m that holds the most of the points ``q`` (n, 3)
     (box frame: centred on the box, its axes), with the depth noise across it.
 
-    normals : (n, 3) unit, box frame, optional: a point belongs to the face its normal points out of
-        (the box axis its normal is most parallel to, and its sign). Without them, to the face it is
-        nearest, and the opposite face's points join when there are at least ``min_face_points`` of
-        them and a fifth as many and their median lies within 6 sigma: the two halves of one noisy slab.
+    normals : (n, 3) unit, box frame, optional, either orientation: a point belongs to a face across the
+        box axis its normal is most parallel to, else across the axis of the face it is nearest; of that
+        axis's two faces, to the one on its side of the centre. The opposite face's points join when there
+        are at least ``min_face_points`` of them and a fifth as many and their median lies within 6 sigma:
+        the two halves of one noisy slab.
     """
     q = np.asarray(q, dtype=np.float64).reshape(-1, 3)
     if normals is not None and len(normals) == len(q):
-        n = np.asarray(normals, dtype=np.float64).reshape(-1, 3)
-        axis = np.argmax(np.abs(n), axis=1)
-        face = axis * 2 + (n[np.arange(len(n)), axis] > 0)
-        f = int(np.argmax(np.bincount(face, minlength=6)))
-        mask = face == f
-        r = q[mask, f // 2]
-        return SeenFace(f, f // 2, mad_sigma(r), r, mask)
-    h = np.asarray(size, dtype=np.float64) / 2.0
-    nearest = np.argmin(np.abs(np.abs(q) - h), axis=1)
-    face = nearest * 2 + (q[np.arange(len(q)), nearest] > 0)
+        axis = np.argmax(np.abs(np.asarray(normals, dtype=np.float64).reshape(-1, 3)), axis=1)
+    else:
+        axis = np.argmin(np.abs(np.abs(q) - np.asarray(size, dtype=np.float64) / 2.0), axis=1)
+    face = axis * 2 + (q[np.arange(len(q)), axis] > 0)
     f = int(np.argmax(np.bincount(face, minlength=6)))
     k = f // 2
     mask = face == f

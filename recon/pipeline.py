@@ -325,7 +325,10 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
         if shape:
             run.warn(f"object {obj.id} ({obj.category}) part {p.part_id} ({p.label}): its points are {shape}; "
                      f"the primitive is given the minimum thickness {config.min_thickness} m")
-        fit = fit_part_covering(p.points, config, run.config.coverage, seed=_part_seed(run.seed, p.part_id),
+        kinds = config
+        if p.label in config.box_labels:
+            kinds = replace(config, candidates=tuple(c for c in config.candidates if c == "box"))
+        fit = fit_part_covering(p.points, kinds, run.config.coverage, seed=_part_seed(run.seed, p.part_id),
                                 normals=p.normals, R_world_ref=R_ref, front=p.label in MOVABLE_LABELS)
         if fit.refused:
             log.info("%s part %d (%s): the fitted %s did not cover its points; refitted as a %s%s", obj.id,
