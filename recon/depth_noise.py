@@ -1,14 +1,14 @@
 """The depth noise of a part's points: their robust spread across the face of a box that holds most of them.
 
 A depth camera's noise runs along its rays, i.e. across the faces it sees. Given a box around a part's
-points (its fitted box, or the points' own oriented box), every point is assigned to a box face: across
-the axis its normal lies along when the normals are given, else the face it is nearest, on the point's
-side of the centre. The face holding
-the most points is the face the camera saw best, and the robust standard deviation (1.4826 x median
-absolute deviation) of those points' coordinates across it is the noise sigma. By nearest face, when
-the opposite face holds the other half of one noisy slab (a thin panel whose box the noise inflated),
-both halves are judged as one cloud; but a slab whose noise is as thick as its face is wide gives
-many of its points to the side faces: normals, where there are any, do not.
+points (its fitted box, or the points' own oriented box), every point is assigned to a box face: a face
+across the axis its normal lies along when the normals are given (of either sign), else across the axis
+of the face it is nearest; of that axis's two faces, the one on the point's side of the centre. The face
+holding the most points is the face the camera saw best, and the robust standard deviation (1.4826 x
+median absolute deviation) of those points' coordinates across it is the noise sigma. When the opposite
+face holds the other half of one noisy slab (a thin panel whose box the noise inflated), both halves are
+judged as one cloud; but by nearest face, a slab whose noise is as thick as its face is wide gives many
+of its points to the side faces: normals, where there are any, do not.
 """
 
 from __future__ import annotations
