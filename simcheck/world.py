@@ -106,6 +106,7 @@ class World:
                 self._robot = load_robot(self.client, robot, self.floor, visuals or gui,
                                          self.scene_floor.T_scene_floor)
                 self.robot = self._robot.body
+                self._effort_limits = np.asarray(self._robot.forces, dtype=float)   # read every physics step
         except Exception:
             self.close()
             raise
@@ -197,8 +198,6 @@ class World:
         """(dof,) the motor torque (force for a prismatic joint) each controlled joint applied in the last step,
         as a share of its effort limit (the URDF effort the motor is capped at, :meth:`command_robot`)."""
         states = pb.getJointStates(self.robot, self._robot.q_index, physicsClientId=self.client)
-        if self._effort_limits is None:     # read every physics step: the limits as an array once
-            self._effort_limits = np.asarray(self._robot.forces, dtype=float)
         return np.abs(np.array([s[3] for s in states], dtype=float)) / self._effort_limits
 
     def finger_q(self) -> np.ndarray:
