@@ -319,15 +319,14 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     base = choose_root(labels, {p.part_id: float(len(p.points)) for p in obj.parts})
     state = ObjectState(obj, labels, {p.part_id: p.points for p in obj.parts}, base)
     fitted: dict[int, tuple] = {}          # {part_id: (name, primitive, score, table)}
+    box_only = replace(config, candidates=tuple(c for c in config.candidates if c == "box"))   # box_labels' parts
 
     def fit(p: PartPoints, R_ref: np.ndarray | None) -> None:
         shape = _degeneracy(p.points, config.min_thickness)
         if shape:
             run.warn(f"object {obj.id} ({obj.category}) part {p.part_id} ({p.label}): its points are {shape}; "
                      f"the primitive is given the minimum thickness {config.min_thickness} m")
-        kinds = config
-        if p.label in config.box_labels:
-            kinds = replace(config, candidates=tuple(c for c in config.candidates if c == "box"))
+        kinds = box_only if p.label in config.box_labels else config
         fit = fit_part_covering(p.points, kinds, run.config.coverage, seed=_part_seed(run.seed, p.part_id),
                                 normals=p.normals, R_world_ref=R_ref, front=p.label in MOVABLE_LABELS)
         if fit.refused:
