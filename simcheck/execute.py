@@ -171,6 +171,8 @@ class _Recorder:
         dof = len(world.robot_spec.joint_names)
         self.effort_history = np.zeros((self.window, dof))  # per step: |motor torque| / effort limit
         self.effort_peak = np.zeros(dof)                 # largest running mean since the last sample
+        self.torques: list = []                          # per step since the history was last brought up to date
+        self.tool_link = world.robot_spec.tool_link
         self.sampled_at = -1                              # the step of the last sample
         self.guard = None                                 # a FreezeGuard when parts are frozen
 
@@ -182,18 +184,18 @@ class _Recorder:
         T = self.world.scene_link_pose(self.handle) if T_world_handle is None else T_world_handle
         return T[:3, :3] @ self.T_handle_grasp[:3, 3] + T[:3, 3]
 
-    def turn(self, T_world_handle: np.ndarray | None = None) -> float:
+    def turn(self, T_world_handle: np.ndarray | None = None, T_world_tool: np.ndarray | None = None) -> float:
         """Angle, rad, by which the handle has turned in the fingers since the grasp (0 when not attached);
         of a held round bar (``roll_axis``), the angle its axis has turned against the pads (its roll about
-        the axis is left out)."""
+        the axis is left out). ``T_world_handle``, ``T_world_tool`` (4, 4): the poses now, when the caller
+        already has them."""
         if self.T_handle_grasp is None or not self.world.attached:
             return 0.0
         T = self.world.scene_link_pose(self.handle) if T_world_handle is None else T_world_handle
-        R_tool = self.world.robot_link_pose(self.world.robot_spec.tool_link)[:3, :3]
+        R_tool = (self.world.robot_link_pose(self.tool_link) if T_world_tool is None else T_world_tool)[:3, :3]
         R = (T[:3, :3] @ self.T_handle_grasp[:3, :3]).T @ R_tool
-        if self.roll_axis is not None:
-            return float(np.arccos(np.clip(self.roll_axis @ R @ self.roll_axis, -1.0, 1.0)))
-        return float(np.arccos(np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)))
+        c = self.roll_axis @ R @ self.roll_axis if self.roll_axis is not None else (np.trace(R) - 1.0) / 2.0
+        return float(np.arccos(min(max(c, -1.0), 1.0)))
 
     def slip_and_turn(self) -> tuple[float, float]:
         """(distance, m, from the grasped point of the handle to the tool origin; :meth:`turn`, rad) now: the
@@ -240,10 +242,24 @@ class _Recorder:
         self.peak = max(self.peak, self.mean)
 
     def track_effort(self) -> None:
-        """Read the robot motors' effort of this step into their running means over the force window."""
-        self.effort_history[self.steps % self.window] = self.world.robot_effort_share()
-        mean = self.effort_history.sum(axis=0) / self.window
-        np.maximum(self.effort_peak, mean, out=self.effort_peak)
+        """Read the robot motors' torques of this step (:meth:`update_effort` takes them into the running means)."""
+        self.torques.append(self.world.robot_torques())
+
+    def update_effort(self) -> None:
+        """Take the torques of the steps since the last update (:meth:`track_effort`) into the motors' running
+        means of |torque| / effort limit over the force window (``effort_history``, a ring buffer with a
+        row per step) and their peak since the last sample (``effort_peak``): the same numbers as one update
+        per step (the window's rows are summed in the same order), with numpy called once for them all."""
+        if not self.torques:
+            return
+        m, ring, window = len(self.torques), self.effort_history, self.window
+        share = np.abs(np.array(self.torques, dtype=float)) / self.world.robot_effort_limits     # (m, dof)
+        self.torques = []
+        rings = np.repeat(ring[None], m, axis=0)               # (m, window, dof): the ring after each step
+        for i, step in enumerate(range(self.steps - m + 1, self.steps + 1)):
+            rings[i:, step % window] = share[i]
+        np.maximum(self.effort_peak, (rings.sum(axis=1) / window).max(axis=0), out=self.effort_peak)
+        ring[:] = rings[-1]
 
     def after_step(self) -> None:
         w = self.world
@@ -267,6 +283,7 @@ class _Recorder:
             self.sample()
 
     def sample(self) -> None:
+        self.update_effort()
         w, r = self.world, self.rows
         k = len(r["t"])
         self.sampled_at = self.steps
@@ -281,11 +298,12 @@ class _Recorder:
         r["object_q"].append(q)
         r["object_qd"].append(qd)
         T_handle = w.scene_link_pose(self.handle)
+        T_tool = w.robot_link_pose(self.tool_link)
         r["T_world_handle"].append(T_handle)
-        r["tool_pos"].append(w.robot_link_position(w.robot_spec.tool_link))
+        r["tool_pos"].append(T_tool[:3, 3].copy())
         r["grasp_point"].append(self.grasp_point(T_handle))
         r["grasp_slide"].append(w.grasp_slide())
-        r["grasp_turn"].append(self.turn(T_handle))
+        r["grasp_turn"].append(self.turn(T_handle, T_tool))
         r["planned_tool_pos"].append(np.array(self.planned_tool, dtype=float))
         r["planned_object_q"].append(self.planned_object_q)
         r["link_speed"].append(vector_norm(v))

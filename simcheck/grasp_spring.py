@@ -106,7 +106,8 @@ def spring_force(spring: GraspSpring, p_held: np.ndarray, v_held: np.ndarray, p_
     K = np.asarray(spring.stiffness, dtype=float)
     if K.ndim == 0:
         K = float(K) * np.eye(3)
-    if np.abs(K).sum(axis=1).max() > spring.max_stiffness:    # else no eigenvalue is above it (Gershgorin)
+    # else no eigenvalue is above it (Gershgorin; the rows' sums as numpy's sum(axis=1) adds them)
+    if max(abs(a) + abs(b) + abs(c) for a, b, c in K.tolist()) > spring.max_stiffness:
         w, V = eigh(K)
         if w.max() > spring.max_stiffness:
             K = (V * np.minimum(w, spring.max_stiffness)) @ V.T

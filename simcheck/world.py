@@ -89,6 +89,8 @@ class World:
         self._movable: list[int] | None = None
         self._tool_jac_point: list[float] | None = None
         self._effort_limits: np.ndarray | None = None
+        self._tool_index = -1                                   # the robot's tool link index
+        self._gains: tuple[list[float], list[float]] = ([], [])  # (position, velocity) gains of each joint
         self._frozen: dict[str, float] = {}                     # frozen scene joint -> its value
         self._frozen_pose: dict[str, np.ndarray] = {}           # frozen scene link -> T_world_link
         self._frozen_parts: list = []                           # the frozen parts, to load again
@@ -107,6 +109,9 @@ class World:
                                          self.scene_floor.T_scene_floor)
                 self.robot = self._robot.body
                 self._effort_limits = np.asarray(self._robot.forces, dtype=float)   # read every physics step
+                self._tool_index = self._robot.links[robot.tool_link]
+                dof = len(robot.joint_names)
+                self._gains = ([float(config.robot_position_gain)] * dof, [1.0] * dof)
         except Exception:
             self.close()
             raise
@@ -197,8 +202,17 @@ class World:
     def robot_effort_share(self) -> np.ndarray:
         """(dof,) the motor torque (force for a prismatic joint) each controlled joint applied in the last step,
         as a share of its effort limit (the URDF effort the motor is capped at, :meth:`command_robot`)."""
-        states = pb.getJointStates(self.robot, self._robot.q_index, physicsClientId=self.client)
-        return np.abs(np.array([s[3] for s in states], dtype=float)) / self._effort_limits
+        return np.abs(np.array(self.robot_torques(), dtype=float)) / self._effort_limits
+
+    def robot_torques(self) -> list[float]:
+        """(dof,) the signed motor torque, N*m (force, N, for a prismatic joint), each controlled joint applied
+        in the last step."""
+        return [s[3] for s in pb.getJointStates(self.robot, self._robot.q_index, physicsClientId=self.client)]
+
+    @property
+    def robot_effort_limits(self) -> np.ndarray:
+        """(dof,) the controlled joints' effort limits, N*m or N (the URDF efforts their motors are capped at)."""
+        return self._effort_limits
 
     def finger_q(self) -> np.ndarray:
         """(n_fingers,) finger joint positions."""
@@ -237,12 +251,13 @@ class World:
 
     def command_robot(self, q: np.ndarray, qd: np.ndarray) -> None:
         """Position-control targets for the controlled joints: ``q`` (dof,), feed-forward ``qd`` (dof,)."""
-        gain = self.config.robot_position_gain
         self._q_target = np.array(q, dtype=float)
+        gains, velocity_gains = self._gains
         pb.setJointMotorControlArray(self.robot, self._robot.q_index, pb.POSITION_CONTROL,
-                                     targetPositions=list(map(float, q)), targetVelocities=list(map(float, qd)),
-                                     forces=self._robot.forces, positionGains=[gain] * len(q),
-                                     velocityGains=[1.0] * len(q), physicsClientId=self.client)
+                                     targetPositions=self._q_target.tolist(),
+                                     targetVelocities=np.asarray(qd, dtype=float).tolist(),
+                                     forces=self._robot.forces, positionGains=gains[:len(q)],
+                                     velocityGains=velocity_gains[:len(q)], physicsClientId=self.client)
 
     def command_fingers(self, open_: bool) -> None:
         """Drive the fingers open or closed (closing past contact squeezes with ``finger_force``)."""
@@ -446,18 +461,19 @@ class World:
         return self._movable
 
     def _tool_stiffness(self, cols: list[int], joint_stiffness: np.ndarray) -> np.ndarray:
-        tool = self._robot.links[self.robot_spec.tool_link]
+        tool = self._tool_index
         if self._tool_jac_point is None:      # the tool origin as PyBullet's Jacobian takes it: fixed
             self._tool_jac_point = jacobian_point(self.client, self.robot, tool, np.zeros(3))
-        J = point_jacobian(self.client, self.robot, tool, np.zeros(3), self._robot_movable(), self._tool_jac_point)
-        return cartesian_stiffness(J[:, cols], joint_stiffness)
+        J = point_jacobian(self.client, self.robot, tool, np.zeros(3), self._robot_movable(), self._tool_jac_point,
+                           columns=cols)
+        return cartesian_stiffness(J, joint_stiffness)
 
     def _apply_grasp_spring(self) -> None:
         g, c = self._grasp, self.client
         if self._arm_impedance is not None:
             g.stiffness = self._tool_stiffness(*self._arm_impedance)
         p_h, v_h = point_state(c, g.body, g.index, g.p_local)
-        tool = self._robot.links[self.robot_spec.tool_link]
+        tool = self._tool_index
         p_t, v_t = point_state(c, self.robot, tool, self._tool_point)
         f, slide_to = spring_force(g, p_h, v_h, p_t, v_t)
         if slide_to is not None:
