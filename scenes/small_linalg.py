@@ -21,13 +21,31 @@ try:
 except ImportError:  # pragma: no cover - numpy 2.x ships it; fall back to the checked functions
     _kernels = None
 
+try:    # numpy's floating-point error state, set directly: ``np.errstate(all="ignore")`` costs ~2 us a use
+    from numpy._core._ufunc_config import _extobj_contextvar as _fp_state, _make_extobj
+    _FP_IGNORE = _make_extobj(all="ignore")
+except ImportError:  # pragma: no cover - a numpy that moved them: np.errstate
+    _fp_state = None
+
+
+def _quiet(kernel, *args, **kwargs):
+    """``kernel(*args, **kwargs)`` with floating-point errors ignored (as inside ``np.errstate(all="ignore")``;
+    a singular or non-finite input is detected from the result)."""
+    if _fp_state is None:   # pragma: no cover
+        with np.errstate(all="ignore"):
+            return kernel(*args, **kwargs)
+    token = _fp_state.set(_FP_IGNORE)
+    try:
+        return kernel(*args, **kwargs)
+    finally:
+        _fp_state.reset(token)
+
 
 def solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """``numpy.linalg.solve(a, b)`` for a float64 ``a (n, n)`` and ``b (n,)`` or ``(n, k)``."""
     if _kernels is None:
         return np.linalg.solve(a, b)
-    with np.errstate(all="ignore"):
-        x = (_kernels.solve1 if np.ndim(b) == 1 else _kernels.solve)(a, b, signature="dd->d")
+    x = _quiet(_kernels.solve1 if np.ndim(b) == 1 else _kernels.solve, a, b, signature="dd->d")
     return x if np.isfinite(x).all() else np.linalg.solve(a, b)
 
 
@@ -35,8 +53,7 @@ def inv(a: np.ndarray) -> np.ndarray:
     """``numpy.linalg.inv(a)`` for a float64 ``a (n, n)``."""
     if _kernels is None:
         return np.linalg.inv(a)
-    with np.errstate(all="ignore"):
-        x = _kernels.inv(a, signature="d->d")
+    x = _quiet(_kernels.inv, a, signature="d->d")
     return x if np.isfinite(x).all() else np.linalg.inv(a)
 
 
@@ -45,8 +62,7 @@ def eigh(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     ascending, eigenvectors (n, n) as columns)."""
     if _kernels is None:
         return tuple(np.linalg.eigh(a))
-    with np.errstate(all="ignore"):
-        w, v = _kernels.eigh_lo(a, signature="d->dd")
+    w, v = _quiet(_kernels.eigh_lo, a, signature="d->dd")
     if np.isfinite(w).all() and np.isfinite(v).all():
         return w, v
     return tuple(np.linalg.eigh(a))

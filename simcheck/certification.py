@@ -37,7 +37,7 @@ from simcheck.keyframes import KeyFrameCamera
 from simcheck.plan_recheck import recheck_plan
 from simcheck.robot_binding import SimRobot, sim_robot_from_spec
 from simcheck.rollout import Rollout
-from simcheck.scene_joints import read_scene_joints, scene_link_names
+from simcheck.scene_joints import read_scene_joints, read_scene_joints_and_links
 from simcheck.world import World
 
 __all__ = ["certify", "planners_planner", "Session", "outcome_of_unplanned"]
@@ -91,9 +91,9 @@ class Session:
         except Exception:
             self.plan_world.close()
             raise
-        self.scene_joints = read_scene_joints(scene)
+        self.scene_joints, links = read_scene_joints_and_links(scene)
         self.ref_joints = read_scene_joints(against) if against is not None else self.scene_joints
-        self.scene_links = set(scene_link_names(scene))
+        self.scene_links = set(links)
         self.last_rollout: Rollout | None = None
         self.save_plan, self.robot_label = False, "default"    # certify(save_plan=...): write out/plans/<joint>.plan.json
         self.freeze_far = False         # execute with the parts nothing can reach frozen (worlds closed after the task)

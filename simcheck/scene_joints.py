@@ -16,7 +16,7 @@ from scenes.description import JointType, SceneModel
 from planners.errors import SceneURDFError
 from simcheck.errors import SceneLoadError
 
-__all__ = ["SceneJoint", "read_scene_joints", "scene_link_names"]
+__all__ = ["SceneJoint", "read_scene_joints", "read_scene_joints_and_links", "scene_link_names"]
 
 
 @dataclass(frozen=True)
@@ -68,6 +68,11 @@ def read_scene_joints(path: str | Path) -> dict[str, SceneJoint]:
         SceneLoadError: missing file, invalid XML, a joint without parent/child/name, a link with two
             parents, or no single root (names the file and the joint).
     """
+    return read_scene_joints_and_links(path)[0]
+
+
+def read_scene_joints_and_links(path: str | Path) -> tuple[dict[str, SceneJoint], tuple[str, ...]]:
+    """(:func:`read_scene_joints`, :func:`scene_link_names`) of the scene URDF at ``path``, read once."""
     scene = _read(path)
     out = {}
     for name, j in scene.joints.items():
@@ -75,7 +80,7 @@ def read_scene_joints(path: str | Path) -> dict[str, SceneJoint]:
         out[name] = SceneJoint(name, j.type, j.parent, j.child,
                                j.lower if np.isfinite(j.lower) else 0.0, j.upper if np.isfinite(j.upper) else 0.0,
                                T_world_joint[:3, :3] @ j.axis, T_world_joint[:3, 3].copy())
-    return out
+    return out, tuple(scene.links)
 
 
 def axis_angle_deg(a: np.ndarray, b: np.ndarray) -> float:
