@@ -489,7 +489,10 @@ class UrdfConfig:
     joint_damping: float = 1.0
     """URDF <dynamics damping> of movable joints (N·s/m or N·m·s/rad)."""
     joint_friction: float = 0.1
-    """URDF <dynamics friction> of movable joints (N or N·m)."""
+    """URDF <dynamics friction> of movable joints (N or N·m); a flap's or drop-down door's is its stay's
+    (scene_urdf.py), larger."""
+    gravity: float = 9.81
+    """m/s^2 along the floor's normal: what a flap's stay holds (scene_urdf.py)."""
     collision_clearance: float = 0.003
     """Movable parts and their children get collision boxes shrunk by this (m, each side), so they
     do not start in contact with their body or siblings in simulation."""

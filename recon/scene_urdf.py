@@ -16,6 +16,11 @@ with the parallel-axis theorem), in the link frame. Parts that move (drawers, do
 hangs from them) get collision shapes shrunk by ``collision_clearance`` so they do not start in
 contact with their body or siblings.
 
+A door hinged about a horizontal axis (a flap, an oven's or a dishwasher's drop-down door) gets the
+joint friction of the stay or counterbalance spring such doors carry and a scan does not show
+(:func:`scenes.description.stay_friction`: 1.2 × the largest gravity torque on it); every other movable
+joint ``joint_friction``.
+
 Every visual carries a material coloured by its part label (``scenes.description.LABEL_RGBA``;
 walls ``wall``). Numbers are written rounded (:func:`scenes.description.round_numbers`) so that the
 same reconstruction gives the same bytes.
@@ -23,12 +28,15 @@ same reconstruction gives the same bytes.
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from recon.model import JointType, Reconstruction
 from recon.primitive import Primitive, PrimitiveKind
 from scenes.description import (DEFAULT_RGBA, LABEL_RGBA, WORLD_LINK, Dynamics, Inertial, Joint, Limit, Link,
-                                Material, SceneModel, Shape, T_translation, mass_properties, urdf_text)
+                                Material, SceneModel, Shape, T_translation, mass_properties, stay_friction,
+                                urdf_text)
 
 __all__ = ["scene_model", "urdf_string", "link_frames", "compound_inertial", "label_rgba"]
 
@@ -123,7 +131,20 @@ def scene_model(rec: Reconstruction, name: str = "scene") -> SceneModel:
                           (_shape(prim, np.eye(4), f"{wall.name}_collision"),)))
         joints.append(Joint(f"{wall.name}_joint", "fixed", WORLD_LINK, wall.name, wall.T_world_wall,
                             dynamics=Dynamics(0.0, 0.0)))
-    return SceneModel(name, links, joints)
+    model = SceneModel(name, links, joints)
+    return _with_stays(model, rec, cfg)
+
+
+def _with_stays(model: SceneModel, rec: Reconstruction, cfg) -> SceneModel:
+    """``model`` with each flap / drop-down door's joint friction raised to hold it against gravity (along
+    the floor's normal; :func:`scenes.description.stay_friction`): a scan shows no stay."""
+    up = rec.floor.normal if rec.floor is not None else np.array([0.0, 0.0, 1.0])
+    held = []
+    for j in model.joints.values():
+        friction = stay_friction(model, j.name, -cfg.gravity * up)
+        if friction > j.dynamics.friction:
+            held.append(dataclasses.replace(j, dynamics=Dynamics(j.dynamics.damping, friction)))
+    return model.replaced(*held) if held else model
 
 
 def urdf_string(rec: Reconstruction, name: str = "scene") -> str:

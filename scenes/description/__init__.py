@@ -7,6 +7,8 @@
 * :class:`Shape` (box / cylinder / sphere / mesh; a cylinder's size is (2r, 2r, length)), volume, inertia;
 * :class:`SceneModel` (links, joints, limits, dynamics, inertials, visuals; ``T_world_link(link, q)``),
   read and written by :func:`read_urdf` / :func:`write_urdf`, the only URDF reader and writer;
+* the stay of a flap or a drop-down door (:func:`stay_friction`: the joint friction that holds it against
+  gravity; a scan does not show it);
 * the floor a scene stands on: :func:`read_scene_floor` (recon's graph.json beside the URDF) ->
   :class:`SceneFloor` (``T_scene_floor``, gravity), :data:`LEVEL_FLOOR` (z = 0, z up) when there is none;
 * ``truth.json``: :data:`TRUTH_FORMAT`, :func:`read_truth_doc`, :func:`write_truth_doc`, and the document as
@@ -31,6 +33,7 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "_model": ["JointType", "Limit", "Dynamics", "Inertial", "Link", "Joint", "SceneModel", "joint_motion"],
     "_urdf": ["MAX_NAME_LENGTH", "read_urdf", "urdf_text", "urdf_xml", "xml_text", "round_numbers", "write_urdf", "LENGTH_DECIMALS",
               "SIGNIFICANT_DIGITS"],
+    "_stays": ["STAY_HOLD", "STAY_MAX_TILT_DEG", "gravity_torque", "stay_friction"],
     "_floor": ["SceneFloor", "LEVEL_FLOOR", "read_scene_floor", "R_onto_up", "FLOOR_FILE"],
     "_truth": ["TRUTH_FORMAT", "check_truth_format", "read_truth_doc", "write_truth_doc", "shape_from_truth",
                "truth_shape_dict"],
