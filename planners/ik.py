@@ -111,6 +111,9 @@ def solve_ik(pose_jacobian, T_target: np.ndarray, q_seed: np.ndarray, lower: np.
     return best
 
 
+_clip = getattr(getattr(np, "_core", None), "umath", np).clip     # the ufunc np.clip and ndarray.clip call
+
+
 def _norm(v: np.ndarray) -> float:
     """``np.linalg.norm(v)`` of a 1-D float array (the same ``sqrt(v . v)``) without its argument checks,
     which cost more than the arithmetic in the IK loop."""
@@ -127,6 +130,7 @@ def _dls_step(J: np.ndarray, e: np.ndarray, W: np.ndarray, damp: np.ndarray) -> 
 def _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping, max_iter, max_step,
          position_only=False) -> IKResult:
     W = np.sqrt(w)
+    lo, hi = (np.broadcast_to(np.asarray(b, dtype=float), np.shape(q)).tolist() for b in (lower, upper))
     rows = 3 if position_only else 6
     damp = damping ** 2 * np.eye(rows)
     if position_only:
@@ -145,16 +149,16 @@ def _dls(pose_jacobian, T_target, q, lower, upper, w, pos_tol, rot_tol, damping,
             J, e = J[:3], e[:3]
         dq = _dls_step(J, e, W, damp)
         # a joint at a limit that the step pushes further out takes no part in the step (otherwise clipping
-        # it bends the step away from the target and the iteration stalls)
-        at_lower, at_upper = q <= lower, q >= upper
-        if at_lower.any() or at_upper.any():
-            pinned = (at_lower & (dq < 0)) | (at_upper & (dq > 0))
+        # it bends the step away from the target and the iteration stalls); the test on Python floats
+        qs = q.tolist()
+        if any(v <= b for v, b in zip(qs, lo)) or any(v >= b for v, b in zip(qs, hi)):
+            pinned = ((q <= lower) & (dq < 0)) | ((q >= upper) & (dq > 0))
             if pinned.any():
                 dq = _dls_step(J, e, np.where(pinned, 0.0, W), damp)
         n = float(np.abs(dq).max())
         if n > max_step:
             dq *= max_step / n
-        q = (q + dq).clip(lower, upper)     # np.clip, without the function's dispatch overhead
+        q = _clip(q + dq, lower, upper)     # np.clip's ufunc, without the method's dispatch overhead
     T, _ = pose_jacobian(q)
     e = pose_error(T, T_target)
     pe, re = float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:]))

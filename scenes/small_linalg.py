@@ -29,32 +29,40 @@ except ImportError:  # pragma: no cover - a numpy that moved them: np.errstate
 
 
 def _quiet(kernel, *args, **kwargs):
-    """``kernel(*args, **kwargs)`` with floating-point errors ignored (as inside ``np.errstate(all="ignore")``;
-    a singular or non-finite input is detected from the result)."""
+    """(``kernel(*args, **kwargs)``, True when every entry of its result (an array or a pair of arrays) is
+    finite), computed with floating-point errors ignored (as inside ``np.errstate(all="ignore")``). The test
+    is on the entries' sum (any NaN or infinity makes it non-finite; a sum of finite entries that overflows
+    only sends the caller to numpy's own function, which returns the same result)."""
     if _fp_state is None:   # pragma: no cover
         with np.errstate(all="ignore"):
-            return kernel(*args, **kwargs)
+            out = kernel(*args, **kwargs)
+            return out, all(np.isfinite(x).all() for x in (out if isinstance(out, tuple) else (out,)))
     token = _fp_state.set(_FP_IGNORE)
     try:
-        return kernel(*args, **kwargs)
+        out = kernel(*args, **kwargs)
+        total = _sum(out[0], None) + _sum(out[1], None) if isinstance(out, tuple) else _sum(out, None)
+        return out, math.isfinite(total)
     finally:
         _fp_state.reset(token)
+
+
+_sum = np.add.reduce
 
 
 def solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """``numpy.linalg.solve(a, b)`` for a float64 ``a (n, n)`` and ``b (n,)`` or ``(n, k)``."""
     if _kernels is None:
         return np.linalg.solve(a, b)
-    x = _quiet(_kernels.solve1 if np.ndim(b) == 1 else _kernels.solve, a, b, signature="dd->d")
-    return x if np.isfinite(x).all() else np.linalg.solve(a, b)
+    x, finite = _quiet(_kernels.solve1 if np.ndim(b) == 1 else _kernels.solve, a, b, signature="dd->d")
+    return x if finite else np.linalg.solve(a, b)
 
 
 def inv(a: np.ndarray) -> np.ndarray:
     """``numpy.linalg.inv(a)`` for a float64 ``a (n, n)``."""
     if _kernels is None:
         return np.linalg.inv(a)
-    x = _quiet(_kernels.inv, a, signature="d->d")
-    return x if np.isfinite(x).all() else np.linalg.inv(a)
+    x, finite = _quiet(_kernels.inv, a, signature="d->d")
+    return x if finite else np.linalg.inv(a)
 
 
 def eigh(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -62,10 +70,8 @@ def eigh(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     ascending, eigenvectors (n, n) as columns)."""
     if _kernels is None:
         return tuple(np.linalg.eigh(a))
-    w, v = _quiet(_kernels.eigh_lo, a, signature="d->dd")
-    if np.isfinite(w).all() and np.isfinite(v).all():
-        return w, v
-    return tuple(np.linalg.eigh(a))
+    (w, v), finite = _quiet(_kernels.eigh_lo, a, signature="d->dd")
+    return (w, v) if finite else tuple(np.linalg.eigh(a))
 
 
 def norm(x: np.ndarray) -> float:

@@ -172,6 +172,7 @@ class _Recorder:
         self.effort_history = np.zeros((self.window, dof))  # per step: |motor torque| / effort limit
         self.effort_peak = np.zeros(dof)                 # largest running mean since the last sample
         self.torques: list = []                          # per step since the history was last brought up to date
+        self.ring_rows: dict = {}                        # (first slot, steps) -> _ring_rows
         self.tool_link = world.robot_spec.tool_link
         self.sampled_at = -1                              # the step of the last sample
         self.guard = None                                 # a FreezeGuard when parts are frozen
@@ -202,9 +203,9 @@ class _Recorder:
         values this step's sample recorded when one was just taken (the same world state), else read."""
         r = self.rows
         if self.sampled_at == self.steps and r["t"]:
-            return float(np.linalg.norm(r["grasp_point"][-1] - r["tool_pos"][-1])), r["grasp_turn"][-1]
+            return vector_norm(r["grasp_point"][-1] - r["tool_pos"][-1]), r["grasp_turn"][-1]
         tool = self.world.robot_link_position(self.world.robot_spec.tool_link)
-        return float(np.linalg.norm(self.grasp_point() - tool)), self.turn()
+        return vector_norm(self.grasp_point() - tool), self.turn()
 
     def held_round_bar(self, pads: np.ndarray | None, closing: np.ndarray) -> np.ndarray | None:
         """(3,) world point on the axis of the round bar the pads hold across its axis, else None; sets
@@ -252,14 +253,16 @@ class _Recorder:
         per step (the window's rows are summed in the same order), with numpy called once for them all."""
         if not self.torques:
             return
-        m, ring, window = len(self.torques), self.effort_history, self.window
+        m, window = len(self.torques), self.window
         share = np.abs(np.array(self.torques, dtype=float)) / self.world.robot_effort_limits     # (m, dof)
         self.torques = []
-        rings = np.repeat(ring[None], m, axis=0)               # (m, window, dof): the ring after each step
-        for i, step in enumerate(range(self.steps - m + 1, self.steps + 1)):
-            rings[i:, step % window] = share[i]
-        np.maximum(self.effort_peak, (rings.sum(axis=1) / window).max(axis=0), out=self.effort_peak)
-        ring[:] = rings[-1]
+        key = ((self.steps - m + 1) % window, m)
+        if key not in self.ring_rows:
+            self.ring_rows[key] = _ring_rows(*key, window)
+        rings = np.concatenate((self.effort_history, share))[self.ring_rows[key]]    # (m, window, dof)
+        # the largest mean is the largest sum over the window (the division by it is monotonic)
+        np.maximum(self.effort_peak, rings.sum(axis=1).max(axis=0) / window, out=self.effort_peak)
+        self.effort_history = rings[-1]
 
     def after_step(self) -> None:
         w = self.world
@@ -325,6 +328,17 @@ class _Recorder:
         self.obj_contacts.clear()
         if self.sample_callback is not None:
             self.sample_callback()
+
+
+def _ring_rows(first: int, m: int, window: int) -> np.ndarray:
+    """(m, window) int: row i holds, for each slot of a ring buffer of ``window`` rows, the row of
+    ``concatenate((ring, new))`` that slot holds after the (i + 1)-th of ``m`` new rows was written, the k-th
+    new row into slot ``(first + k) % window``: ``window + k`` of the latest k <= i written there, else the slot's
+    old row."""
+    out = np.tile(np.arange(window), (m, 1))
+    for k in range(m):
+        out[k:, (first + k) % window] = window + k
+    return out
 
 
 def _step(world: World, rec: _Recorder, n: int, on_step=None) -> None:

@@ -116,6 +116,6 @@ class FreezeGuard:
 
     def check(self, q: np.ndarray, q_target: np.ndarray, t: float) -> None:
         """Thaw the frozen parts when sum(weights * |q - q_target|) passes the allowance (at time ``t`` s)."""
-        if self.thawed_at is None and float(np.sum(self.weights * np.abs(q - q_target))) > self.allowance:
+        if self.thawed_at is None and float((self.weights * np.abs(q - q_target)).sum()) > self.allowance:
             self.world.thaw_parts()
             self.thawed_at = t

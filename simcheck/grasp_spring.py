@@ -55,7 +55,7 @@ class GraspSpring:
     @property
     def slide(self) -> float:
         """How far, m, the held point has slid on the link since the grasp was made (above the cap)."""
-        return float(np.linalg.norm(np.asarray(self.p_local, dtype=float) - self.p_local0))
+        return vector_norm(np.asarray(self.p_local, dtype=float) - self.p_local0)
 
 
 def cartesian_stiffness(J: np.ndarray, joint_stiffness: np.ndarray) -> np.ndarray:
