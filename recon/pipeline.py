@@ -42,6 +42,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.spatial import cKDTree
 
+from recon.body_fronts import body_within_fronts
 from recon.clearance import cleared_scene
 from recon.completion import (VERTICAL_SPAN_LABELS, complete_missing_legs, complete_mounted_parts,
                               complete_reaching_parts, complete_vertical_parts)
@@ -309,7 +310,9 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     coverage bounds is refitted with the other kinds of candidates
     (:func:`recon.fitting.fit_part_covering`); one still outside them is named in a warning by
     :func:`check_coverage`. A base box turned off the up direction or the yaw its object's faces show is
-    refitted along them (:func:`_base_along_measured_frame`). A body whose points show one face only is
+    refitted along them (:func:`_base_along_measured_frame`). A body reaching past the drawer/door fronts
+    closing it is cut back to their outer faces (:func:`recon.body_fronts.body_within_fronts`: label bleed
+    and depth noise at a face covered by fronts). A body whose points show one face only is
     given a depth behind it (:func:`recon.fitting.body_behind_face`), with a warning. A leg's section is
     measured from its faces' points (:func:`recon.post_section.post_primitive`), not judged by Eq. 3: depth
     noise as wide as the leg makes its points a blob whose spread Eq. 3 fits. A drawer's or door's seen face is
@@ -344,17 +347,25 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     if turned is not None:
         fitted[base] = turned
     completed = {}            # {part_id: primitive} completed beyond what its points show (the fit is kept)
-    prim = fitted[base][1]
+    R_ref = fitted[base][1].T_world_part[:3, :3].copy()
+    for p in obj.parts:
+        if p.part_id in small:
+            fit(p, R_ref)
     if base_part.label == "body":
-        deep = body_behind_face(prim, base_part.normals, config)
+        name, prim, _, table = fitted[base]
+        cut = body_within_fronts(prim, [fitted[p.part_id][1] for p in obj.parts if p.label in MOVABLE_LABELS],
+                                 config.panel_ratio)
+        if cut is not prim:
+            log.info("object %d part %d (body): reached %.3f m past the fronts closing it; cut back to them", obj.id,
+                     base, float(np.max(prim.size - cut.size)))
+            rng = np.random.default_rng(_part_seed(run.seed, base))
+            fitted[base] = (name, cut, score_primitive(cut, base_part.points, cKDTree(base_part.points), config, rng),
+                            table)
+        deep = body_behind_face(fitted[base][1], base_part.normals, config)
         if deep is not None:
             run.warn(f"{link_name(obj.category, obj.id, base_part.label, base)}: its points show one face only; "
                      f"the body is given the depth of its narrower side, {deep.size.min():.2f} m, behind it")
             completed[base] = deep
-    R_ref = prim.T_world_part[:3, :3].copy()
-    for p in obj.parts:
-        if p.part_id in small:
-            fit(p, R_ref)
     for p in obj.parts:
         if p.label in VERTICAL_SPAN_LABELS and p.part_id != base:
             post = post_primitive(p.points, p.normals, R_ref, fitted[p.part_id][1], config)
