@@ -377,6 +377,10 @@ class JointConfig:
     door_max_angle: float = 1.75
     """A door hinge's stop (rad, 100°; furniture hinges open 95–110°); the swept-collision test
     stops the door earlier when it would hit its body, a neighbour or a wall."""
+    door_drop_angle: float = 1.5707963267948966
+    """The stop (rad, 90°) of a door that opens downward (hinged about a horizontal axis below its centre:
+    an oven's or a dishwasher's door, a drop-down flap): it opens to horizontal, the shelf a rack or a
+    tray rolls out onto, and its stay or hinge stops it there (:func:`recon.joints.door_stop`)."""
     swing_step: float = 0.035
     """Angular / travel sampling step (rad or m) of the collision sweep."""
     sweep_clearance: float = 0.015
@@ -516,7 +520,7 @@ class JointUncertaintyConfig:
     can be centimetres shallower). Added in quadrature to the bootstrap spread of a drawer's upper limit."""
     door_stop_prior: float = 0.09
     """σ (rad) of a door's stop when no obstacle limits its swing: the hinge's stop is not seen; the
-    estimate assumes ``door_max_angle`` (furniture hinges stop at 92-110 deg, σ of a uniform 0.3 rad
+    estimate assumes ``door_max_angle`` or ``door_drop_angle`` (furniture hinges stop at 92-110 deg, σ of a uniform 0.3 rad
     range). Added in quadrature to the bootstrap spread of such a door's upper limit."""
 
 

@@ -40,7 +40,7 @@ import numpy as np
 from recon.config import FittingConfig, ReconConfig
 from recon.fitting import denoised_box, dominant_yaw
 from recon.hinge_depth import HingeDepth
-from recon.joints import movable_joint_detail
+from recon.joints import door_stop, movable_joint_detail
 from recon.model import JointEstimate, JointType, JointUncertainty
 from recon.primitive import Primitive, PrimitiveKind
 from scenes.hinge_mirror import other_edge_origin
@@ -146,7 +146,7 @@ def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, han
     if jtype is JointType.PRISMATIC:
         prior = ucfg.drawer_travel_prior
     else:
-        prior = ucfg.door_stop_prior if ref[2] >= config.joints.door_max_angle - 1e-9 else 0.0
+        prior = ucfg.door_stop_prior if ref[2] >= door_stop(config.joints, ref[0], ref[1], child.prim) - 1e-9 else 0.0
     # a thick door's pivot lies anywhere across the thickness the scan leaves undecided (uniform over it,
     # the estimate at its back end: RMS undecided / sqrt(3))
     return JointUncertainty(rms(ang), float(np.hypot(rms(off), undecided / np.sqrt(3.0))),

@@ -11,8 +11,8 @@ sits near the top or bottom edge. The hinge line lies at the edge, on the door's
 facing its body) -- for a door thicker than a front's board, at the carcass's front on which it rests,
 or on its front face when a face beside the hinge edge leaves it no other pivot (hinge_depth.py). The
 axis sign makes a
-positive angle swing the door outward. The limit is the largest angle (up to ``door_max_angle``) the
-door and its handle sweep without containing other scan points (its body's, a neighbour's, a wall's).
+positive angle swing the door outward. The limit is the largest angle (up to ``door_max_angle``, or
+``door_drop_angle`` for a door that opens downward: :func:`door_stop`) the door and its handle sweep without containing other scan points (its body's, a neighbour's, a wall's).
 
 Everything else is fixed (templates.py). lower = 0 is the scanned state.
 """
@@ -33,7 +33,7 @@ from recon.primitive import Primitive, volume_weighted_centre
 from recon.templates import template_for
 from scenes.description import T_about
 
-__all__ = ["Hinge", "SeenPoints", "estimate_joints", "movable_joint", "movable_joint_detail", "opening_face", "hinge",
+__all__ = ["Hinge", "SeenPoints", "door_stop", "estimate_joints", "movable_joint", "movable_joint_detail", "opening_face", "hinge",
            "hinge_line", "seen_points", "sweep_limit"]
 
 log = logging.getLogger(__name__)
@@ -209,6 +209,17 @@ def _drawer_travel(parent: Primitive, axis: np.ndarray, config: JointConfig, bod
     return config.drawer_travel_fraction * max(depth - config.drawer_back_clearance, 0.0)
 
 
+def door_stop(config: JointConfig, axis: np.ndarray, origin: np.ndarray, door: Primitive) -> float:
+    """The stop (rad) a door's swing ends at when nothing in the scan stops it earlier: ``door_drop_angle``
+    for a door that opens downward (its axis (3,) within 45 deg of the horizontal, through ``origin`` (3,) m
+    below the door's centre), else ``door_max_angle``. World frame, z up."""
+    a = np.asarray(axis, dtype=np.float64) / np.linalg.norm(axis)
+    r = door.center - np.asarray(origin, dtype=np.float64)
+    if abs(float(a @ _UP)) < np.sin(np.radians(45.0)) and float((r - (r @ a) * a) @ _UP) > 0.0:
+        return config.door_drop_angle
+    return config.door_max_angle
+
+
 def movable_joint(jtype: JointType, parent: Primitive, child: Primitive, handles: list[Primitive],
                   moving: list[Primitive], obstacles: np.ndarray, config: JointConfig,
                   contacts: ContactConfig, fitting: FittingConfig,
@@ -249,8 +260,8 @@ def movable_joint_detail(jtype: JointType, parent: Primitive, child: Primitive, 
     log.debug("hinge %s", line.desc)
     if obstacles is None:
         return axis, origin, float("nan"), line
-    angles = np.append(np.arange(config.swing_step, config.door_max_angle, config.swing_step),
-                       config.door_max_angle)
+    stop = door_stop(config, axis, origin, child)
+    angles = np.append(np.arange(config.swing_step, stop, config.swing_step), stop)
     radius = max(float(np.max(np.linalg.norm(m.corners() - origin, axis=1))) for m in moving)
     upper = sweep_limit(moving, lambda a: T_about(axis, origin, a), angles, obstacles, config,
                         reach=radius)
@@ -314,7 +325,7 @@ def estimate_joints(category: str, names: dict[int, str], labels: dict[int, str]
         travel = _drawer_travel(prims[p], axis, config, body)
         if jtype is JointType.PRISMATIC and upper < travel:
             warn(f"{names[c]}: drawer travel limited to {upper:.3f} m (of {travel:.3f} m) by scan points in its way")
-        elif jtype is JointType.REVOLUTE and upper < config.door_max_angle - 1e-9:
+        elif jtype is JointType.REVOLUTE and upper < door_stop(config, axis, origin, prims[c]) - 1e-9:
             log.info("%s: door swing stops at %.0f deg (collision)", names[c], np.degrees(upper))
         if upper <= 0.0:
             warn(f"{names[c]}: the {labels[c]} cannot move without collision; upper limit 0")

@@ -57,6 +57,21 @@ def test_fold_down_door_gets_a_horizontal_hinge_at_the_bottom(synth):
     top_edge = np.array([0.49, 0.0, 0.575])
     R = Rotation.from_rotvec(j.axis * 0.1).as_matrix()
     assert (R @ (top_edge - j.origin) + j.origin)[0] > top_edge[0] + 0.02   # folds outward
+    assert j.upper == pytest.approx(ReconConfig().joints.door_drop_angle)      # down to horizontal, not 100 deg
+
+
+def test_a_lift_up_flap_swings_to_the_furniture_hinge_stop_not_to_horizontal(synth):
+    """The same box with its handle near the bottom edge: hinged at the top, the flap lifts up (outward) and its
+    unseen stop is a furniture hinge's (``door_max_angle``), not the drop-down door's horizontal."""
+    body = [synth.box([0, -0.3, 0.0], [0.5, 0.3, 0.02]), synth.box([0, -0.3, 0.58], [0.5, 0.3, 0.6]),
+            synth.box([0, -0.3, 0.0], [0.5, -0.28, 0.6]), synth.box([0, 0.28, 0.0], [0.5, 0.3, 0.6]),
+            synth.box([0, -0.3, 0.0], [0.02, 0.3, 0.6])]
+    door = [synth.box([0.48, -0.275, 0.025], [0.5, 0.275, 0.575])]
+    handle = [synth.box([0.5, -0.1, 0.08], [0.53, 0.1, 0.1])]           # near the bottom edge
+    props, labels = synth.scan_arrays([(7, "cabinet", [(1, "body", body), (2, "door", door), (3, "handle", handle)])])
+    j = joint(reconstruct_scan(scan_from_arrays(props, labels)), "cabinet7_door2_joint")
+    assert abs(abs(j.axis[1]) - 1.0) < 1e-3 and abs(j.origin[2] - 0.575) < 0.01   # horizontal, at the top edge
+    assert j.upper == pytest.approx(ReconConfig().joints.door_max_angle)
 
 
 def test_door_swing_stops_at_a_neighbour(synth):
