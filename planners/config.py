@@ -32,8 +32,10 @@ class PlannerConfig:
     Push finish (:mod:`planners.push_finish`: a door on a horizontal hinge whose grasped opening ends short)
         push_finish: plan it at all; push_min_share: the grasped opening must reach this share of the request
             first (the inner face must be open to the hand); push_inset: the fingertips push this far in from
-            the door's free edge, m; push_lead: m, how far ahead of the fingertips the planning checks put the
-            face (the tips on the face are not a collision); push_effort_share: a grasped opening that would
+            the door's free edge, m; push_lead: m, how far short of the door's inner face the move onto it stops
+            and ahead of the fingertips the planning checks put the face (the tips on the face are not a
+            collision): about the estimate's hinge-line error (a centimetre), so the free move does not meet a
+            door that lies a little nearer than estimated; push_effort_share: a grasped opening that would
             statically load an arm joint beyond this share of its effort limit is handed over to the push there
             (half: the margin the certificate keeps on the gripper's hold, for what statics leaves out -- the
             door's damping and inertia, the compliant grasp's lag); push_tilts: rad, the approach axis tilted from the
@@ -88,7 +90,7 @@ class PlannerConfig:
     push_finish: bool = True
     push_min_share: float = 0.3
     push_inset: float = 0.04
-    push_lead: float = 0.005
+    push_lead: float = 0.015
     push_tilts: tuple = (0.0, math.radians(30.0), math.radians(60.0))
     push_effort_share: float = 0.5
     drawer_fraction: float = 0.9
