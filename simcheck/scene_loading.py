@@ -3,7 +3,8 @@ every link and joint addressed by name, the joint friction emulated and the coll
 
 On load it
 
-* lets PyBullet validate the whole URDF once and reads its joint table exactly as PyBullet parses it;
+* lets PyBullet validate the whole URDF once and reads its joint table exactly as PyBullet parses it (once
+  per file contents and process: :func:`_whole_table`);
 * loads each never-moving link as a static single-link body and each articulated subtree as a small
   fixed-base body (measured speed: docs/decisions.md, "PyBullet step settings");
 * disables the default velocity motors PyBullet puts on every scene joint (they lock drawers and
@@ -85,14 +86,7 @@ def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig, visuals: bo
     c = client
     plain = pb.URDF_USE_INERTIA_FROM_FILE | (0 if visuals else pb.URDF_IGNORE_VISUAL_SHAPES)
     flags = plain | pb.URDF_USE_SELF_COLLISION | pb.URDF_USE_SELF_COLLISION_EXCLUDE_ALL_PARENTS
-    try:
-        with c_output_logged(f"loading {scene_urdf}") as said:
-            whole = pb.loadURDF(str(scene_urdf), useFixedBase=True, flags=flags, physicsClientId=c)
-    except pb.error as exc:
-        raise SceneLoadError(f"PyBullet cannot load scene URDF {scene_urdf}: {exc}"
-                             f"{pybullet_said(said)}") from exc
-    joints, links = body_joint_table(c, whole)
-    pb.removeBody(whole, physicsClientId=c)
+    joints, links = _whole_table(c, scene_urdf, flags)
     link_at: dict[str, tuple[int, int]] = {}
     names: dict[tuple[int, int], str] = {}
     static_pose: dict[str, np.ndarray] = {}
@@ -206,10 +200,58 @@ class _Body:
     static_ancestors: tuple
 
 
-#: how many scenes' bodies :func:`_bodies` keeps
+#: how many scenes' bodies :func:`_bodies` and joint tables :func:`_whole_table` keep
 BODIES_KEPT = 8
 _kept_bodies: OrderedDict[tuple, tuple] = OrderedDict()
+_kept_tables: OrderedDict[tuple, tuple] = OrderedDict()
 _kept_lock = threading.Lock()
+
+
+def _file_key(path: Path) -> tuple | None:
+    """(absolute path, SHA-256 of the bytes) of the file at ``path``; None when it cannot be read."""
+    try:
+        return str(path.absolute()), hashlib.sha256(path.read_bytes()).digest()
+    except OSError:
+        return None
+
+
+def _kept(store: OrderedDict, key: tuple | None):
+    """What ``store`` keeps under ``key`` (None: nothing)."""
+    with _kept_lock:
+        kept = store.get(key)
+        if kept is not None:
+            store.move_to_end(key)
+        return kept
+
+
+def _keep(store: OrderedDict, key: tuple, value) -> None:
+    """Keep ``value`` in ``store`` under ``key``; the oldest beyond :data:`BODIES_KEPT` go."""
+    with _kept_lock:
+        store[key] = value
+        while len(store) > BODIES_KEPT:
+            store.popitem(last=False)
+
+
+def _whole_table(c: int, scene_urdf: Path, flags: int) -> tuple[dict[str, JointInfo], dict[str, int]]:
+    """(joint name -> :class:`JointInfo`, link name -> link index) of ``scene_urdf`` loaded whole, as PyBullet
+    parses it: loaded into ``c`` (which validates the file), read and removed. The tables of the last
+    :data:`BODIES_KEPT` files are kept under the file's path and SHA-256 (a batch certifies many tasks of one
+    scene in one process, each in fresh worlds): an unchanged file is not loaded whole again (~9 ms a world)."""
+    key = _file_key(Path(scene_urdf))
+    kept = _kept(_kept_tables, key)
+    if kept is not None:
+        return dict(kept[0]), dict(kept[1])
+    try:
+        with c_output_logged(f"loading {scene_urdf}") as said:
+            whole = pb.loadURDF(str(scene_urdf), useFixedBase=True, flags=flags, physicsClientId=c)
+    except pb.error as exc:
+        raise SceneLoadError(f"PyBullet cannot load scene URDF {scene_urdf}: {exc}"
+                             f"{pybullet_said(said)}") from exc
+    joints, links = body_joint_table(c, whole)
+    pb.removeBody(whole, physicsClientId=c)
+    if key is not None:
+        _keep(_kept_tables, key, (dict(joints), dict(links)))
+    return joints, links
 
 
 def _bodies(scene_urdf: Path, mesh_dir: str) -> tuple:
@@ -219,16 +261,10 @@ def _bodies(scene_urdf: Path, mesh_dir: str) -> tuple:
     an unchanged file is not split again; the same bodies, computed the same way, so the same physics. The key
     is the URDF's bytes: a moving link's mesh replaced by one of several pieces under an unchanged URDF, within
     one process, would keep its old (unsplit) body."""
-    path = Path(scene_urdf)
-    try:
-        key = (str(path.absolute()), hashlib.sha256(path.read_bytes()).digest())
-    except OSError:
-        key = None
-    with _kept_lock:
-        kept = _kept_bodies.get(key)
-        if kept is not None:
-            _kept_bodies.move_to_end(key)
-            return kept
+    key = _file_key(Path(scene_urdf))
+    kept = _kept(_kept_bodies, key)
+    if kept is not None:
+        return kept
     try:
         parts = scene_bodies(read_urdf(scene_urdf), mesh_dir=mesh_dir)
     except DescriptionError as exc:
@@ -236,10 +272,7 @@ def _bodies(scene_urdf: Path, mesh_dir: str) -> tuple:
     bodies = tuple(_Body(p.urdf, p.T_world_root[:3, 3].tolist(), quat_xyzw_from_R(p.T_world_root[:3, :3]), p.moving,
                          p.static_ancestors) for p in parts)
     if key is not None and not any(Path(mesh_dir).iterdir()):     # mesh pieces live only while loading
-        with _kept_lock:
-            _kept_bodies[key] = bodies
-            while len(_kept_bodies) > BODIES_KEPT:
-                _kept_bodies.popitem(last=False)
+        _keep(_kept_bodies, key, bodies)
     return bodies
 
 
