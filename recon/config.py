@@ -409,6 +409,10 @@ class JointConfig:
     """... and a thicker door only when its carcass's points at the hinge edge rule out, at this significance
     (likelihood ratio, chi-square with 1 dof), every onset of its side face a door that thin would show
     (the depth noise modelled; recon/hinge_depth.py, docs/decisions.md, thick doors)."""
+    hinge_clearance_p_value: float = 0.05
+    """The carcass's side face at a door's hinge edge may begin as deep as the deepest onset its points do not
+    rule out at this significance (likelihood ratio, chi-square with 1 dof): the door's ``HingeDepth.clearance``,
+    which the joint's stated uncertainty covers (recon/hinge_depth.py)."""
     hinge_side_margin: float = 0.03
     """A door without a handle is hinged at the edge nearer its body's edge; when the two edges' distances
     to the body's edges differ by less than this (m, about what a scan's edges are off by) the side is

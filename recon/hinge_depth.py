@@ -32,6 +32,16 @@ is decided by the door and its carcass, which the scan shows at the hinge edge:
   witness: its own points decide whenever it has enough.
 - None of them shown: the board rule stays.
 
+What the scan does not resolve behind the door: its carcass's side face is known to begin only within the
+onsets its points do not rule out (likelihood ratio, ``JointConfig.hinge_clearance_p_value``), and between the
+hinge's depth and the deepest of them the scan cannot tell door from gap. Were it a gap, the pivot could also
+lie in from the hinge edge: a pivot ``e`` in from the edge swings the hinge-side back corner up to ``e`` deeper
+(radius ``e`` about it), so it needs ``e`` of clearance behind the door; were it door, the back face (and the
+hinge on it) lies deeper. Both fill the right triangle whose legs are that *clearance*, across the door and along
+its normal, at the estimate (``HingeDepth.clearance``; the joint's uncertainty widens by its RMS, clearance /
+sqrt(3): :mod:`recon.joint_uncertainty`). The estimate stays on the triangle's corner (the door's back face at its
+edge: where our generators and the third-party corpus hinge their doors).
+
 All depths are measured along the opening's outward normal, from the door box's front face, in metres.
 """
 
@@ -70,11 +80,15 @@ class HingeDepth:
     """Where the hinge line lies across the door: ``depth`` (m) behind the door's front face;
     ``undecided`` (m): the span of depths (in front of ``depth``) where the pivot could equally lie
     (0 when the scan decides it or the board rule is used); ``how``: "board", "carcass front"
-    (overlay door resting on its carcass) or "front face" (inset door)."""
+    (overlay door resting on its carcass) or "front face" (inset door); ``clearance`` (m): how far behind
+    ``depth`` the carcass's side face at the door's edge may begin, as far as its points tell (0 for an inset
+    door or when no carcass points were there): the pivot may lie that much deeper or that much in from the
+    edge (see the module docstring)."""
 
     depth: float
     undecided: float
     how: str
+    clearance: float = 0.0
 
 
 def hinge_depth(front: float, board: float, normal: np.ndarray, out: np.ndarray, edge: float,
@@ -129,6 +143,9 @@ def hinge_depth(front: float, board: float, normal: np.ndarray, out: np.ndarray,
         return board_rule
     # overlay: thick only when the carcass's points rule out its side face beginning where a board door's would
     onsets, loglik = onset_likelihood(d_body, max(noise, _MIN_NOISE), -band, config.door_max_thickness + band)
+    # the deepest onset the carcass's points do not rule out: behind the hinge, door or gap up to there
+    deepest = float(onsets[2.0 * (loglik.max() - loglik) <= chi2.isf(config.hinge_clearance_p_value, 1)].max())
+    board_rule = HingeDepth(board, 0.0, "board", max(0.0, deepest - board))
     thin = onsets <= board + config.hinge_depth_tolerance
     ratio = 2.0 * (float(loglik.max()) - float(loglik[thin].max()))
     if thin[int(np.argmax(loglik))] or ratio < chi2.isf(config.hinge_depth_p_value, 1):
@@ -142,7 +159,7 @@ def hinge_depth(front: float, board: float, normal: np.ndarray, out: np.ndarray,
     behind = int(np.sum((d_body >= cut) & (d_body <= cut + band)))
     if cut <= board + config.hinge_depth_tolerance or behind < n_min:
         return board_rule
-    return HingeDepth(cut, cut - board, "carcass front")
+    return HingeDepth(cut, cut - board, "carcass front", max(0.0, deepest - cut))
 
 
 def onset_likelihood(depths: np.ndarray, noise: float, lo: float, hi: float, step: float = 0.001

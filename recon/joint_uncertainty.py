@@ -15,7 +15,8 @@ reference; the spreads are RMS deviations from it:
               to the axis (the replicates hinge a door on its box's back face), combined in quadrature
               with what the scan leaves undecided across a door thicker than a front's board: its pivot
               may lie anywhere over that thickness (:mod:`recon.hinge_depth`; RMS of a uniform spread,
-              undecided / sqrt(3))
+              undecided / sqrt(3)), and with the clearance it leaves unresolved behind the door: the pivot may lie
+              that much deeper or in from the hinge edge (a right triangle of that leg: RMS clearance / sqrt(3))
     upper     RMS deviation of the upper limit (m or rad), combined in quadrature with the template's
               prior on what the scan cannot show: a drawer's travel (its box is hidden:
               ``drawer_travel_prior``) and the stop of a door whose swing no obstacle limits
@@ -50,7 +51,7 @@ __all__ = ["METHOD", "with_joint_uncertainty", "joint_uncertainty"]
 METHOD = "bootstrap+template-prior"
 """The ``method`` recorded in graph.json: the bootstrap, plus the template's prior on what no scan shows
 (a drawer's hidden travel, a free door's stop) in the upper limit's spread and a thick door's undecided
-pivot depth in the origin's."""
+pivot depth and the clearance behind a door the scan does not resolve in the origin's."""
 
 
 @dataclass(frozen=True)
@@ -148,8 +149,11 @@ def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, han
     else:
         prior = ucfg.door_stop_prior if ref[2] >= door_stop(config.joints, ref[0], ref[1], child.prim) - 1e-9 else 0.0
     # a thick door's pivot lies anywhere across the thickness the scan leaves undecided (uniform over it,
-    # the estimate at its back end: RMS undecided / sqrt(3))
-    return JointUncertainty(rms(ang), float(np.hypot(rms(off), undecided / np.sqrt(3.0))),
+    # the estimate at its back end: RMS undecided / sqrt(3)); behind it, in the clearance the scan does not
+    # resolve, anywhere in the right triangle of that leg (deeper, or in from the edge), the estimate at its
+    # corner: RMS clearance / sqrt(3)
+    clearance = float(hinge_depth.clearance) if revolute and hinge_depth is not None else 0.0
+    return JointUncertainty(rms(ang), float(np.sqrt(rms(off) ** 2 + (undecided ** 2 + clearance ** 2) / 3.0)),
                             float(np.hypot(upper, prior)), int(ucfg.samples), METHOD, side)
 
 

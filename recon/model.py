@@ -92,7 +92,8 @@ class JointUncertainty:
 
     axis_deg : RMS angle (degrees) between the axis re-estimated from resampled data and the estimate
     origin_m : RMS distance (m) of the re-estimated axis point from the estimated axis line,
-        perpendicular to the axis (for a drawer: where its front is, across its travel)
+        perpendicular to the axis (for a drawer: where its front is, across its travel); for a door, with what
+        the scan leaves undecided across and behind it in quadrature (recon/joint_uncertainty.py)
     upper : RMS deviation of the re-estimated upper limit (m for prismatic, rad for revolute)
     samples : number of resamplings they were measured over; method : how (e.g. "bootstrap")
     side_undecided : a door's hinge side is a guess: it has no handle and its two edges lie as near its
