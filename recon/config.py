@@ -333,6 +333,9 @@ class HandleConfig:
     handle_extent_percentile: float = 2.0
     """A handle's extents along the face come from the [p, 100 - p] percentiles (%) of its points clear
     of the face (widened by 1 / (1 - 2p/100))."""
+    handle_middle_percentile: float = 10.0
+    """A bar's middle across it is the mean of this and the opposite percentile (%) of its points (bleed
+    and lateral noise spread its edges unevenly)."""
     handle_outer_percentile: float = 90.0
     """A bar's outer face lies at most at this percentile (%) of its points' heights off the face ..."""
     handle_outer_noise: float = 1.28

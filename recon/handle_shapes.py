@@ -17,9 +17,8 @@ of (:func:`facing_plane`), after refinement. Measured along that face's outward 
   outer face, the ``handle_outer_percentile`` height less ``handle_outer_noise`` σ: posts and bleed
   pull the median in, a bar seen mostly from the front has its median on its outer face;
 - extents along the face from the ``[p, 100 - p]`` percentiles (``handle_extent_percentile``), widened
-  by ``1 / (1 - 2p/100)`` (exact for points spread evenly); the middle across the bar is its points'
-  median (label bleed and the side the camera saw spread its edges unevenly: a percentile pair follows
-  them, the median does not);
+  by ``1 / (1 - 2p/100)`` (exact for points spread evenly); the middle across the bar from the
+  ``handle_middle_percentile`` pair (bleed spreads its edges unevenly);
 - the longer in-face extent is the bar's length; shorter than ``handle_knob_max_length`` -> a knob;
 - the bar's thickness (across it and out from the face) is its measured width, at most
   ``handle_max_thickness`` (a wider measure is lateral noise and bleed, not a thicker bar);
@@ -159,7 +158,8 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
     if width > length:                                 # u along the bar
         u, v = v, -u
         (mu, length), (mv, width) = _extent(q @ u, pct), _extent(q @ v, pct)
-    mv = float(np.median(q @ v))
+    mid_pct = config.handle_middle_percentile
+    mv = float(np.mean(np.percentile(q @ v, [mid_pct, 100.0 - mid_pct])))
     knob = length < config.handle_knob_max_length
     if knob:
         across = float(np.clip((length + width) / 2.0, fitting.min_thickness, config.handle_knob_max_diameter))

@@ -212,17 +212,3 @@ def test_reconstructed_cabinet_handles_are_bars_on_posts_in_scene_urdf(kitchen_r
         for p in posts:
             assert abs(float(np.min(p.corners()[:, 0])) - 0.5) < 0.006
         assert text.count(f'<collision name="{part.link}_collision') == 3
-
-
-def test_a_bar_whose_points_trail_off_one_side_is_centred_on_the_bar():
-    """Mixed pixels and the one side face a camera sees past the bar trail its points 3 cm off one edge (about
-    a quarter of them): the bar's middle across it is where most of its points are, not halfway between
-    percentiles the trail has moved."""
-    rng = np.random.default_rng(2)
-    pts = _bar_cloud(rng, noise=0.003)
-    n = len(pts) // 4
-    trail = np.c_[rng.uniform(BAR_OUT - BAR_T, BAR_OUT, n), rng.uniform(-BAR_L / 2, BAR_L / 2, n),
-                  BAR_T / 2 + rng.exponential(0.01, n).clip(max=0.03)]
-    hs = handle_shapes(np.vstack([pts, trail]), _box_envelope(0.0, 0.06, 0.12, 0.03), FACE, CFG.handles, CFG.fitting)
-    assert hs.style is HandleStyle.BAR, hs.reason
-    assert abs(hs.shapes[0].center[2]) < 0.003, hs.shapes[0].center
