@@ -307,7 +307,12 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
         lo[k], hi[k] = seen - config.min_thickness / 2, seen + config.min_thickness / 2
     face_mask = _facing(normals, seen_mask, prim.T_world_part[:3, k], config)
     side = _seen_side(normals, face_mask, prim.T_world_part[:3, k])
-    is_front = side is not None and _vertical_panel(lo, hi, k, prim.T_world_part[:3, :3], config)
+    # a front by its label is judged by its outline, not by its noise slab's depth (sigma 4-5 cm at 3-4 m: the
+    # 2.9 sigma correction leaves a slab 20 cm deep when one end's tail passes for a face)
+    lo_k, hi_k = (lo[k], hi[k]) if not by_normals else (-config.front_thickness / 2, config.front_thickness / 2)
+    is_front = side is not None and _vertical_panel(np.where(np.arange(3) == k, lo_k, lo),
+                                                    np.where(np.arange(3) == k, hi_k, hi), k,
+                                                    prim.T_world_part[:3, :3], config)
     if is_front:
         # a front (door, drawer front) seen from one side: its in-plane edges at the half-density of its
         # face, its seen face at the median of that face's points, the board's thickness behind it
@@ -328,7 +333,7 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
         # a box seen on two or three faces: each other seen face at the median of its points
         for a in range(3):
             if a != k:
-                lo[a], hi[a] = _seen_faces(q, a, normals, prim.T_world_part[:3, :3], lo[a], hi[a], config)
+                lo[a], hi[a] = _seen_faces(q, a, normals, prim.T_world_part[:3, :3], lo[a], hi[a], config, True)
     for a in range(3):
         if hi[a] - lo[a] < config.min_thickness:
             mid = (hi[a] + lo[a]) / 2
@@ -514,7 +519,7 @@ def _curved(q: np.ndarray, mask: np.ndarray, k: int, normals: np.ndarray | None,
 
 
 def _seen_faces(q: np.ndarray, a: int, normals: np.ndarray | None, R: np.ndarray, lo: float, hi: float,
-                config: FittingConfig) -> tuple[float, float]:
+                config: FittingConfig, wide: bool = False) -> tuple[float, float]:
     """(low, high) ends along axis ``a`` of a box whose points ``q`` (n, 3) in its frame (axes the columns
     of ``R`` (3, 3) world) extend over [``lo``, ``hi``] along it (percentiles, overshooting by the noise).
 
@@ -537,15 +542,48 @@ def _seen_faces(q: np.ndarray, a: int, normals: np.ndarray | None, R: np.ndarray
     for end, tail in ((0, order[:m]), (1, order[-m:])):
         if along[tail].mean() <= 0.5:
             continue
-        near = along & (np.abs(x - out[end]) < config.seen_face_band)
-        if near.sum() < config.min_face_points:
-            continue
-        face = float(np.median(x[near]))
-        if abs(face - out[end]) > config.seen_face_band / 2:
-            continue
+        if wide:
+            face, near = _face_from_end(x, along, out[end], config)
+            if face is None:
+                continue
+        else:
+            near = along & (np.abs(x - out[end]) < config.seen_face_band)
+            if near.sum() < config.min_face_points:
+                continue
+            face = float(np.median(x[near]))
+            if abs(face - out[end]) > config.seen_face_band / 2:
+                continue
         if _turn(q[near], n_part[near], a) <= config.seen_face_max_turn:
             out[end] = face
     return (out[0], out[1]) if out[1] - out[0] >= config.min_thickness else (lo, hi)
+
+
+def _face_from_end(x: np.ndarray, along: np.ndarray, end: float, config: FittingConfig
+                   ) -> tuple[float | None, np.ndarray]:
+    """(the face, its points (n,) bool) of a box end at ``end`` whose face points (``along``: normals across
+    the face) spread wider than ``seen_face_band`` by depth noise, from their coordinates ``x`` (n,): the
+    median of the along-points in a window from ``end`` to as far past the median as ``end`` lies before it
+    (plus the band), re-taken until it settles -- noise is symmetric about the surface, so the window's median
+    is the face once the window is centred on it. None when it does not settle, or settles farther in than
+    3 of the window's robust sigmas + half the band (an inner face seen beside the end)."""
+    sign = 1.0 if end <= float(np.median(x)) else -1.0       # inwards
+    d = (x - end) * sign                                      # depth behind the end
+    face = float(config.seen_face_band / 2)
+    near = along & (d < config.seen_face_band)
+    for _ in range(20):
+        near = along & (d > -config.seen_face_band) & (d < 2.0 * face + config.seen_face_band)
+        if near.sum() < config.min_face_points:
+            return None, near
+        new = float(np.median(d[near]))
+        if abs(new - face) < 1e-4:
+            break
+        face = new
+    else:
+        return None, near
+    sigma = mad_sigma(d[near])
+    if face > 3.0 * sigma + config.seen_face_band / 2:
+        return None, near
+    return end + sign * face, near
 
 
 def _icp_refined(prim: Primitive, score: FitScore, points: np.ndarray, normals: np.ndarray,

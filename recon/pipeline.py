@@ -310,9 +310,9 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     coverage bounds is refitted with the other kinds of candidates
     (:func:`recon.fitting.fit_part_covering`); one still outside them is named in a warning by
     :func:`check_coverage`. A base box turned off the up direction or the yaw its object's faces show is
-    refitted along them (:func:`_base_along_measured_frame`). A body reaching past the drawer/door fronts
-    closing it is cut back to their outer faces (:func:`recon.body_fronts.body_within_fronts`: label bleed
-    and depth noise at a face covered by fronts). A body whose points show one face only is
+    refitted along them (:func:`_base_along_measured_frame`). A body's face reaching past the drawer/door
+    fronts closing it, or standing apart behind them, is moved onto them
+    (:func:`recon.body_fronts.body_within_fronts`: label bleed and depth noise at a face covered by fronts). A body whose points show one face only is
     given a depth behind it (:func:`recon.fitting.body_behind_face`), with a warning. A leg's section is
     measured from its faces' points (:func:`recon.post_section.post_primitive`), not judged by Eq. 3: depth
     noise as wide as the leg makes its points a blob whose spread Eq. 3 fits. A drawer's or door's seen face is
@@ -356,8 +356,8 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
         cut = body_within_fronts(prim, [fitted[p.part_id][1] for p in obj.parts if p.label in MOVABLE_LABELS],
                                  config.panel_ratio)
         if cut is not prim:
-            log.info("object %d part %d (body): reached %.3f m past the fronts closing it; cut back to them", obj.id,
-                     base, float(np.max(prim.size - cut.size)))
+            log.info("object %d part %d (body): its faces moved onto the fronts closing them (extents %s -> %s m)",
+                     obj.id, base, np.round(prim.size, 3), np.round(cut.size, 3))
             rng = np.random.default_rng(_part_seed(run.seed, base))
             fitted[base] = (name, cut, score_primitive(cut, base_part.points, cKDTree(base_part.points), config, rng),
                             table)

@@ -39,6 +39,16 @@ def test_a_body_behind_its_fronts_or_without_boards_is_unchanged():
                               RATIO).size[0] == 0.6
 
 
+def test_a_body_fitted_apart_behind_its_fronts_is_moved_out_to_their_backs():
+    # seen only at its stiles' edges and through the gaps, the body's face came out 5 cm behind its fronts
+    body = box([0.0, -0.25, 0.0], [0.45, 0.25, 0.8])
+    fronts = [box([0.5, -0.24, 0.05], [0.518, 0.24, 0.39]), box([0.498, -0.24, 0.41], [0.516, 0.24, 0.75])]
+    assert np.allclose(_x_span(body_within_fronts(body, fronts, RATIO)), (0.0, 0.5))
+    # a front farther out than MAX_FRONT_GAP is no closed front (a drawer pulled out): the face is kept
+    pulled = [box([0.62, -0.24, 0.05], [0.638, 0.24, 0.39])]
+    assert body_within_fronts(body, pulled, RATIO) is body
+
+
 def test_a_door_opened_beside_the_body_or_lying_across_it_cuts_nothing():
     body = box([0.0, -0.25, 0.0], [0.57, 0.25, 0.8])
     # opened 90 deg about a hinge at the body's +y front corner: the board stands in front of the body, facing y
