@@ -312,11 +312,11 @@ def fit_primitives(obj: ObjectPoints, run: _Run) -> ObjectState:
     :func:`check_coverage`. A base box turned off the up direction or the yaw its object's faces show is
     refitted along them (:func:`_base_along_measured_frame`). A body's face reaching past the drawer/door
     fronts closing it, or standing apart behind them, is moved onto them
-    (:func:`recon.body_fronts.body_within_fronts`: label bleed and depth noise at a face covered by fronts). A body whose points show one face only is
-    given a depth behind it (:func:`recon.fitting.body_behind_face`), with a warning. A leg's section is
-    measured from its faces' points (:func:`recon.post_section.post_primitive`), not judged by Eq. 3: depth
-    noise as wide as the leg makes its points a blob whose spread Eq. 3 fits. A drawer's or door's seen face is
-    read from its points' normals (``front`` of :func:`recon.fitting.fit_part`)."""
+    (:func:`recon.body_fronts.body_within_fronts`: label bleed and depth noise at a face covered by fronts).
+    A body whose points show one face only is given a depth behind it (:func:`recon.fitting.body_behind_face`),
+    with a warning. A leg's section is measured from its faces' points (:func:`recon.post_section.post_primitive`),
+    not judged by Eq. 3: depth noise as wide as the leg makes its points a blob whose spread Eq. 3 fits. A
+    drawer's or door's seen face is read from its points' normals (``front`` of :func:`recon.fitting.fit_part`)."""
     config = run.config.fitting
     labels = {p.part_id: p.label for p in obj.parts}
     base = choose_root(labels, {p.part_id: float(len(p.points)) for p in obj.parts})
