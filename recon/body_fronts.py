@@ -31,15 +31,17 @@ __all__ = ["body_within_fronts"]
 _FACE_ALIGN = 0.9
 """A front closes a body face when its thin axis is within ~25 deg of that face's normal."""
 
+MIN_FRONT_GAP = 0.01
 MAX_FRONT_GAP = 0.1
-"""A body face at most this far (m) behind the back of the fronts closing it is moved out to them; a wider gap
-is no closed front (a drawer pulled out), and the face is kept."""
+"""A body face more than ``MIN_FRONT_GAP`` (m; a closed front stands a few millimetres off its carcass: hinge
+play, bumpers) and at most ``MAX_FRONT_GAP`` behind the back of the fronts closing it is moved out to them; a
+wider gap is no closed front (a drawer pulled out), and the face is kept."""
 
 
 def body_within_fronts(body: Primitive, fronts: list[Primitive], panel_ratio: float) -> Primitive:
     """``body`` (a box) with each face that lies beyond the outer face of a front closing it moved back
-    to the outermost such front's outer face, and each face behind that front's back face (by at most
-    ``MAX_FRONT_GAP``) moved out to it; ``body`` itself when no face moves.
+    to the outermost such front's outer face, and each face behind that front's back face (by more than
+    ``MIN_FRONT_GAP``, at most ``MAX_FRONT_GAP``) moved out to it; ``body`` itself when no face moves.
 
     A front is a box (world frame) thinner than ``panel_ratio`` x its middle extent, whose thin axis is
     within ``_FACE_ALIGN`` of a body axis, whose centre lies within the body's outline across that axis
@@ -74,7 +76,7 @@ def body_within_fronts(body: Primitive, fronts: list[Primitive], panel_ratio: fl
         at = hi[a] if side else -lo[a]                 # the body's face, outwards positive
         if at > face:
             at = face
-        elif back - MAX_FRONT_GAP <= at < back:
+        elif back - MAX_FRONT_GAP <= at < back - MIN_FRONT_GAP:
             at = back
         if side:
             hi[a] = at

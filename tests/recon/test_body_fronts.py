@@ -44,6 +44,8 @@ def test_a_body_fitted_apart_behind_its_fronts_is_moved_out_to_their_backs():
     body = box([0.0, -0.25, 0.0], [0.45, 0.25, 0.8])
     fronts = [box([0.5, -0.24, 0.05], [0.518, 0.24, 0.39]), box([0.498, -0.24, 0.41], [0.516, 0.24, 0.75])]
     assert np.allclose(_x_span(body_within_fronts(body, fronts, RATIO)), (0.0, 0.5))
+    # a door standing a few millimetres off its carcass (hinge play) is a closed front as it is
+    assert body_within_fronts(box([0.0, -0.25, 0.0], [0.497, 0.25, 0.8]), fronts[:1], RATIO).size[0] == 0.497
     # a front farther out than MAX_FRONT_GAP is no closed front (a drawer pulled out): the face is kept
     pulled = [box([0.62, -0.24, 0.05], [0.638, 0.24, 0.39])]
     assert body_within_fronts(body, pulled, RATIO) is body
