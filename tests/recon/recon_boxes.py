@@ -22,3 +22,12 @@ def box(lo, hi, rotvec=(0, 0, 0)) -> Primitive:
 def planes(p: Primitive):
     """The surface planes of ``p`` as the contact stage sees them (default config)."""
     return p.planes(CFG.contacts.cylinder_side_faces)
+
+
+def carcass_points(rng: np.random.Generator, m: int = 1500) -> tuple[np.ndarray, np.ndarray]:
+    """(points (2m, 3), normals (2m, 3)) of a 0.5 x 0.52 x 0.8 m carcass (x from 0 to its front at 0.5) seen on
+    its two sides (y = -+0.26) and its top (z = 0.8), m points each, noise-free."""
+    side = np.c_[rng.uniform(0.0, 0.5, m), np.where(rng.random(m) < 0.5, -0.26, 0.26), rng.uniform(0.0, 0.8, m)]
+    side_n = np.c_[np.zeros(m), np.sign(side[:, 1]), np.zeros(m)]
+    top = np.c_[rng.uniform(0.0, 0.5, m), rng.uniform(-0.26, 0.26, m), np.full(m, 0.8)]
+    return np.concatenate([side, top]), np.concatenate([side_n, np.tile([0.0, 0.0, 1.0], (m, 1))])

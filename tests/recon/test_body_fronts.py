@@ -11,7 +11,7 @@ from recon.body_fronts import body_within_fronts
 from recon.config import ReconConfig
 from recon.pipeline import _Run, fit_primitives
 from recon.scan import ObjectPoints, PartPoints
-from recon_boxes import box
+from recon_boxes import box, carcass_points
 
 CFG = ReconConfig()
 RATIO = CFG.fitting.panel_ratio
@@ -63,12 +63,8 @@ def test_a_door_opened_beside_the_body_or_lying_across_it_cuts_nothing():
 
 def test_the_pipeline_cuts_a_body_fitted_past_its_drawer_front():
     rng = np.random.default_rng(5)
-    m = 1500
     # the carcass: its sides and top from x = 0 to its front at x = 0.5; an overlay drawer front at 0.5-0.518
-    side = np.c_[rng.uniform(0.0, 0.5, m), np.where(rng.random(m) < 0.5, -0.26, 0.26), rng.uniform(0.0, 0.8, m)]
-    side_n = np.c_[np.zeros(m), np.sign(side[:, 1]), np.zeros(m)]
-    top = np.c_[rng.uniform(0.0, 0.5, m), rng.uniform(-0.26, 0.26, m), np.full(m, 0.8)]
-    top_n = np.tile([0.0, 0.0, 1.0], (m, 1))
+    carcass, carcass_n = carcass_points(rng)
     k = 800
     front = np.c_[0.518 + rng.normal(0.0, 0.01, k), rng.uniform(-0.24, 0.24, k), rng.uniform(0.05, 0.75, k)]
     front_n = np.tile([1.0, 0.0, 0.0], (k, 1))
@@ -76,7 +72,7 @@ def test_the_pipeline_cuts_a_body_fitted_past_its_drawer_front():
     b = 200
     bleed = np.c_[0.518 + rng.normal(0.0, 0.03, b), rng.uniform(-0.25, 0.25, b), rng.uniform(0.02, 0.78, b)]
     bleed_n = np.tile([1.0, 0.0, 0.0], (b, 1))
-    body = PartPoints(1, 10, "body", np.concatenate([side, top, bleed]), np.concatenate([side_n, top_n, bleed_n]))
+    body = PartPoints(1, 10, "body", np.concatenate([carcass, bleed]), np.concatenate([carcass_n, bleed_n]))
     drawer = PartPoints(1, 11, "drawer", front, front_n)
     state = fit_primitives(ObjectPoints(1, "cabinet", (body, drawer)), _Run(CFG, 0, []))
     outer = _x_span(state.prims[11])[1]

@@ -12,6 +12,7 @@ from recon.fitting import fit_part_covering
 from recon.pipeline import _Run, fit_primitives
 from recon.primitive import PrimitiveKind
 from recon.scan import ObjectPoints, PartPoints
+from recon_boxes import carcass_points
 
 CFG = ReconConfig()
 
@@ -44,13 +45,7 @@ def test_a_part_that_is_no_front_keeps_the_nearest_face_rule():
 
 
 def test_the_pipeline_fits_a_noisy_drawer_front_as_a_board():
-    rng = np.random.default_rng(3)
-    m = 1500
-    side = np.c_[rng.uniform(0.0, 0.5, m), np.where(rng.random(m) < 0.5, -0.26, 0.26), rng.uniform(0.0, 0.8, m)]
-    side_n = np.c_[np.zeros(m), np.sign(side[:, 1]), np.zeros(m)]
-    top = np.c_[rng.uniform(0.0, 0.5, m), rng.uniform(-0.26, 0.26, m), np.full(m, 0.8)]
-    top_n = np.tile([0.0, 0.0, 1.0], (m, 1))
-    body = PartPoints(1, 10, "body", np.concatenate([side, top]), np.concatenate([side_n, top_n]))
+    body = PartPoints(1, 10, "body", *carcass_points(np.random.default_rng(3)))
     p, n = front_slab(1)
     state = fit_primitives(ObjectPoints(1, "cabinet", (body, PartPoints(1, 11, "drawer", p, n))), _Run(CFG, 0, []))
     assert _board(state.prims[11]), state.prims[11]
