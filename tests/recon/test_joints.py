@@ -42,13 +42,19 @@ def test_door_hinges_on_the_edge_opposite_its_handle(synth, side):
     assert 0.0 < j.upper <= ReconConfig().joints.door_max_angle
 
 
-def test_fold_down_door_gets_a_horizontal_hinge_at_the_bottom(synth):
+def _box_with_door(synth, category: str, handle_z: float):
+    """Object 7: a 0.5 x 0.6 x 0.6 m open box (part 1), its front door (part 2) and a handle bar (part 3) whose
+    bottom is at ``handle_z`` m."""
     body = [synth.box([0, -0.3, 0.0], [0.5, 0.3, 0.02]), synth.box([0, -0.3, 0.58], [0.5, 0.3, 0.6]),
             synth.box([0, -0.3, 0.0], [0.5, -0.28, 0.6]), synth.box([0, 0.28, 0.0], [0.5, 0.3, 0.6]),
             synth.box([0, -0.3, 0.0], [0.02, 0.3, 0.6])]
     door = [synth.box([0.48, -0.275, 0.025], [0.5, 0.275, 0.575])]
-    handle = [synth.box([0.5, -0.1, 0.5], [0.53, 0.1, 0.52])]          # near the top edge
-    props, labels = synth.scan_arrays([(7, "oven", [(1, "body", body), (2, "door", door), (3, "handle", handle)])])
+    handle = [synth.box([0.5, -0.1, handle_z], [0.53, 0.1, handle_z + 0.02])]
+    return 7, category, [(1, "body", body), (2, "door", door), (3, "handle", handle)]
+
+
+def test_fold_down_door_gets_a_horizontal_hinge_at_the_bottom(synth):
+    props, labels = synth.scan_arrays([_box_with_door(synth, "oven", 0.5)])           # handle near the top edge
     rec = reconstruct_scan(scan_from_arrays(props, labels))
     j = joint(rec, "oven7_door2_joint")
     assert j.type is JointType.REVOLUTE
@@ -63,12 +69,7 @@ def test_fold_down_door_gets_a_horizontal_hinge_at_the_bottom(synth):
 def test_a_lift_up_flap_swings_to_the_furniture_hinge_stop_not_to_horizontal(synth):
     """The same box with its handle near the bottom edge: hinged at the top, the flap lifts up (outward) and its
     unseen stop is a furniture hinge's (``door_max_angle``), not the drop-down door's horizontal."""
-    body = [synth.box([0, -0.3, 0.0], [0.5, 0.3, 0.02]), synth.box([0, -0.3, 0.58], [0.5, 0.3, 0.6]),
-            synth.box([0, -0.3, 0.0], [0.5, -0.28, 0.6]), synth.box([0, 0.28, 0.0], [0.5, 0.3, 0.6]),
-            synth.box([0, -0.3, 0.0], [0.02, 0.3, 0.6])]
-    door = [synth.box([0.48, -0.275, 0.025], [0.5, 0.275, 0.575])]
-    handle = [synth.box([0.5, -0.1, 0.08], [0.53, 0.1, 0.1])]           # near the bottom edge
-    props, labels = synth.scan_arrays([(7, "cabinet", [(1, "body", body), (2, "door", door), (3, "handle", handle)])])
+    props, labels = synth.scan_arrays([_box_with_door(synth, "cabinet", 0.08)])       # handle near the bottom edge
     j = joint(reconstruct_scan(scan_from_arrays(props, labels)), "cabinet7_door2_joint")
     assert abs(abs(j.axis[1]) - 1.0) < 1e-3 and abs(j.origin[2] - 0.575) < 0.01   # horizontal, at the top edge
     assert j.upper == pytest.approx(ReconConfig().joints.door_max_angle)
