@@ -12,7 +12,8 @@ facing its body) -- for a door thicker than a front's board, at the carcass's fr
 or on its front face when a face beside the hinge edge leaves it no other pivot (hinge_depth.py). The
 axis sign makes a
 positive angle swing the door outward. The limit is the largest angle (up to ``door_max_angle``, or
-``door_drop_angle`` for a door that opens downward: :func:`door_stop`) the door and its handle sweep without containing other scan points (its body's, a neighbour's, a wall's).
+``door_drop_angle`` for a door that opens downward: :func:`door_stop`) the door and its handle sweep
+without containing other scan points (its body's, a neighbour's, a wall's).
 
 Everything else is fixed (templates.py). lower = 0 is the scanned state.
 """
@@ -33,8 +34,8 @@ from recon.primitive import Primitive, volume_weighted_centre
 from recon.templates import template_for
 from scenes.description import T_about
 
-__all__ = ["Hinge", "SeenPoints", "door_stop", "estimate_joints", "movable_joint", "movable_joint_detail", "opening_face", "hinge",
-           "hinge_line", "seen_points", "sweep_limit"]
+__all__ = ["Hinge", "SeenPoints", "door_stop", "estimate_joints", "movable_joint", "movable_joint_detail",
+           "opening_face", "hinge", "hinge_line", "seen_points", "sweep_limit"]
 
 log = logging.getLogger(__name__)
 
