@@ -147,7 +147,8 @@ def joint_uncertainty(jtype: JointType, parent: _PartData, child: _PartData, han
     if jtype is JointType.PRISMATIC:
         prior = ucfg.drawer_travel_prior
     else:
-        prior = ucfg.door_stop_prior if ref[2] >= door_stop(config.joints, ref[0], ref[1], child.prim) - 1e-9 else 0.0
+        free = ref[2] >= door_stop(config.joints, ref[0], ref[1], child.prim) - 1e-9     # no obstacle stopped it
+        prior = ucfg.door_stop_prior if free else 0.0
     # a thick door's pivot lies anywhere across the thickness the scan leaves undecided (uniform over it,
     # the estimate at its back end: RMS undecided / sqrt(3)); behind it, in the clearance the scan does not
     # resolve, anywhere in the right triangle of that leg (deeper, or in from the edge), the estimate at its

@@ -28,15 +28,13 @@ same reconstruction gives the same bytes.
 
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 
 from recon.model import JointType, Reconstruction
 from recon.primitive import Primitive, PrimitiveKind
 from scenes.description import (DEFAULT_RGBA, LABEL_RGBA, WORLD_LINK, Dynamics, Inertial, Joint, Limit, Link,
-                                Material, SceneModel, Shape, T_translation, mass_properties, stay_friction,
-                                urdf_text)
+                                Material, SceneModel, Shape, T_translation, mass_properties, urdf_text,
+                                with_stays)
 
 __all__ = ["scene_model", "urdf_string", "link_frames", "compound_inertial", "label_rgba"]
 
@@ -131,20 +129,8 @@ def scene_model(rec: Reconstruction, name: str = "scene") -> SceneModel:
                           (_shape(prim, np.eye(4), f"{wall.name}_collision"),)))
         joints.append(Joint(f"{wall.name}_joint", "fixed", WORLD_LINK, wall.name, wall.T_world_wall,
                             dynamics=Dynamics(0.0, 0.0)))
-    model = SceneModel(name, links, joints)
-    return _with_stays(model, rec, cfg)
-
-
-def _with_stays(model: SceneModel, rec: Reconstruction, cfg) -> SceneModel:
-    """``model`` with each flap / drop-down door's joint friction raised to hold it against gravity (along
-    the floor's normal; :func:`scenes.description.stay_friction`): a scan shows no stay."""
     up = rec.floor.normal if rec.floor is not None else np.array([0.0, 0.0, 1.0])
-    held = []
-    for j in model.joints.values():
-        friction = stay_friction(model, j.name, -cfg.gravity * up)
-        if friction > j.dynamics.friction:
-            held.append(dataclasses.replace(j, dynamics=Dynamics(j.dynamics.damping, friction)))
-    return model.replaced(*held) if held else model
+    return with_stays(SceneModel(name, links, joints), -cfg.gravity * up)     # a scan shows no flap's stay
 
 
 def urdf_string(rec: Reconstruction, name: str = "scene") -> str:

@@ -23,7 +23,7 @@ import numpy as np
 
 from planners.scene_urdf import read_scene_urdf
 from scenes.description import (Dynamics, Joint, JointType, Limit, Link, SceneModel, read_scene_floor,
-                                stay_friction, urdf_text, write_urdf)
+                                urdf_text, with_stays, write_urdf)
 from simcheck.config import PhysicsConfig
 from simcheck.estimate_faults import _move_joint_keep_geometry, _shifted
 from simcheck.perturbations import Perturbation
@@ -52,16 +52,6 @@ def _g6(x: float) -> float:
     return float(f"{float(x):.6g}")
 
 
-def _with_stay(model: SceneModel, joint: str, gravity: np.ndarray) -> SceneModel:
-    """``model`` with ``joint``'s sampled friction raised to its stay's when the joint is a flap's or a drop-down
-    door's (:func:`scenes.description.stay_friction` of the sampled world's mass, axis and hinge line)."""
-    j = model.joints[joint]
-    held = stay_friction(model, joint, gravity)
-    if held <= j.dynamics.friction:
-        return model
-    return model.replaced(dataclasses.replace(j, dynamics=Dynamics(j.dynamics.damping, _g6(held))))
-
-
 def perturbed_scene(src: str | Path, p: Perturbation, pivot_xy=(0.0, 0.0)) -> SceneModel:
     """The scene model of ``src`` with ``p`` applied (see the module docstring)."""
     model = read_scene_urdf(src)
@@ -82,7 +72,7 @@ def perturbed_scene(src: str | Path, p: Perturbation, pivot_xy=(0.0, 0.0)) -> Sc
         items[1] = dataclasses.replace(link, inertial=dataclasses.replace(
             link.inertial, mass=link.inertial.mass * p.mass_scale, inertia=link.inertial.inertia * p.mass_scale))
     model = model.replaced(*items)
-    model = _with_stay(model, p.joint, read_scene_floor(src).gravity(PhysicsConfig.gravity))
+    model = with_stays(model, read_scene_floor(src).gravity(PhysicsConfig.gravity), [p.joint])
     model = model.replaced(*_perturbed_handles(model, j.child, p, R_world_part=R))
     if any(abs(v) > 0.0 for v in p.base_error):
         model = _moved_scene(model, base_error_inverse(p.base_error, pivot_xy))

@@ -33,7 +33,7 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "_model": ["JointType", "Limit", "Dynamics", "Inertial", "Link", "Joint", "SceneModel", "joint_motion"],
     "_urdf": ["MAX_NAME_LENGTH", "read_urdf", "urdf_text", "urdf_xml", "xml_text", "round_numbers", "write_urdf", "LENGTH_DECIMALS",
               "SIGNIFICANT_DIGITS"],
-    "_stays": ["STAY_HOLD", "STAY_MAX_TILT_DEG", "gravity_torque", "stay_friction"],
+    "_stays": ["STAY_HOLD", "STAY_MAX_TILT_DEG", "gravity_torque", "stay_friction", "with_stays"],
     "_floor": ["SceneFloor", "LEVEL_FLOOR", "read_scene_floor", "R_onto_up", "FLOOR_FILE"],
     "_truth": ["TRUTH_FORMAT", "check_truth_format", "read_truth_doc", "write_truth_doc", "shape_from_truth",
                "truth_shape_dict"],

@@ -345,8 +345,8 @@ def _significant(x: float, scale: float | None = None) -> str:
 def round_numbers(root) -> None:
     """Rewrite the numbers of a URDF element tree in place so that the same model gives the same bytes:
     lengths and angles (origins, sizes, axes, limits) to ``LENGTH_DECIMALS`` decimals, masses, joint
-    friction and damping and inertias to ``SIGNIFICANT_DIGITS`` significant digits (an inertia term relative to the largest term of its
-    tensor, so round-off terms near zero are written as 0)."""
+    friction and damping and inertias to ``SIGNIFICANT_DIGITS`` significant digits (an inertia term relative
+    to the largest term of its tensor, so round-off terms near zero are written as 0)."""
     for el in root.iter():
         for key in list(el.attrib):
             if (el.tag, key) in _LENGTH_ATTRIBUTES:
