@@ -86,14 +86,15 @@ def load_scene(client: int, scene_urdf: Path, config: PhysicsConfig, visuals: bo
     c = client
     plain = pb.URDF_USE_INERTIA_FROM_FILE | (0 if visuals else pb.URDF_IGNORE_VISUAL_SHAPES)
     flags = plain | pb.URDF_USE_SELF_COLLISION | pb.URDF_USE_SELF_COLLISION_EXCLUDE_ALL_PARENTS
-    joints, links = _whole_table(c, scene_urdf, flags)
+    key = _file_key(Path(scene_urdf))     # the file read and hashed once: both caches below use it
+    joints, links = _whole_table(c, scene_urdf, flags, key)
     link_at: dict[str, tuple[int, int]] = {}
     names: dict[tuple[int, int], str] = {}
     static_pose: dict[str, np.ndarray] = {}
     joint_at: dict[str, tuple[int, int]] = {}
     parts: dict[int, _Body] = {}
     with tempfile.TemporaryDirectory(prefix="partscene_scene_") as tmp:
-        for k, part in enumerate(_bodies(scene_urdf, tmp)):
+        for k, part in enumerate(_bodies(scene_urdf, tmp, key)):
             body = _load_part(c, Path(tmp) / f"body{k}.urdf", part, flags if part.moving else plain,
                               f"a part of scene URDF {scene_urdf}")
             bj, bl = _register(c, body, link_at, names, joint_at)
@@ -232,12 +233,13 @@ def _keep(store: OrderedDict, key: tuple, value) -> None:
             store.popitem(last=False)
 
 
-def _whole_table(c: int, scene_urdf: Path, flags: int) -> tuple[dict[str, JointInfo], dict[str, int]]:
+def _whole_table(c: int, scene_urdf: Path, flags: int,
+                 key: tuple | None) -> tuple[dict[str, JointInfo], dict[str, int]]:
     """(joint name -> :class:`JointInfo`, link name -> link index) of ``scene_urdf`` loaded whole, as PyBullet
     parses it: loaded into ``c`` (which validates the file), read and removed. The tables of the last
     :data:`BODIES_KEPT` files are kept under the file's path and SHA-256 (a batch certifies many tasks of one
-    scene in one process, each in fresh worlds): an unchanged file is not loaded whole again (~9 ms a world)."""
-    key = _file_key(Path(scene_urdf))
+    scene in one process, each in fresh worlds): an unchanged file is not loaded whole again. ``key``: the
+    file's :func:`_file_key`."""
     kept = _kept(_kept_tables, key)
     if kept is not None:
         return dict(kept[0]), dict(kept[1])
@@ -254,14 +256,13 @@ def _whole_table(c: int, scene_urdf: Path, flags: int) -> tuple[dict[str, JointI
     return joints, links
 
 
-def _bodies(scene_urdf: Path, mesh_dir: str) -> tuple:
+def _bodies(scene_urdf: Path, mesh_dir: str, key: tuple | None) -> tuple:
     """The bodies of ``scene_urdf`` (:func:`simcheck.scene_bodies.scene_bodies`, mesh pieces written into
     ``mesh_dir``). The last :data:`BODIES_KEPT` scenes whose split wrote no mesh piece are kept under the
     file's path and SHA-256 (a batch certifies many tasks of one scene in one process, each in fresh worlds):
     an unchanged file is not split again; the same bodies, computed the same way, so the same physics. The key
     is the URDF's bytes: a moving link's mesh replaced by one of several pieces under an unchanged URDF, within
-    one process, would keep its old (unsplit) body."""
-    key = _file_key(Path(scene_urdf))
+    one process, would keep its old (unsplit) body. ``key``: the file's :func:`_file_key`."""
     kept = _kept(_kept_bodies, key)
     if kept is not None:
         return kept
