@@ -15,6 +15,7 @@ import recon
 from recon.config import JointConfig
 from recon.hinge_depth import SeenPoints, hinge_depth
 from scenes.description import JointType, Shape, ShapeKind
+from scenes.hinge_mirror import other_edge_origin
 from scenes.model import ArticulatedObject, Joint, Part, Scene
 from scenes.scan_io import write_scan
 from scenes.scanner import scan_scene
@@ -46,6 +47,9 @@ def _cabinet(kind: str) -> tuple[Scene, np.ndarray]:
     elif kind == "standoff":
         door = _box([X0 - _GAP - 0.018, -Y, 0.0], [X0 - _GAP, Y, H])
         hinge, free = np.array([X0 - _GAP, Y - _IN, 0.0]), -Y + 0.05
+    elif kind == "pair_no_handle":          # two handleless doors meeting in the middle, hinged at their outer edges
+        door = _box([X0 - T, 0.0015, 0.0], [X0, Y, H])
+        hinge, free = np.array([X0, Y, 0.0]), 0.05
     else:
         door = _box([X0 - T, -Y, 0.0], [X0, Y, H])
         hinge, free = np.array([X0, Y, 0.0]), -Y + 0.05
@@ -53,7 +57,11 @@ def _cabinet(kind: str) -> tuple[Scene, np.ndarray]:
     parts = [Part(11, "body", np.eye(4), shell, 500.0), Part(12, "door", np.eye(4), (door,), 500.0)]
     joints = [Joint(JointType.FIXED, None, 11), Joint(JointType.REVOLUTE, 11, 12, np.array([0, 0, -1.0]), hinge, 0.0, 1.6)]
     contacts = [(11, 12)]
-    if kind != "overlay_no_handle":
+    if kind == "pair_no_handle":
+        parts.append(Part(14, "door", np.eye(4), (_box([X0 - T, -Y, 0.0], [X0, -0.0015, H]),), 500.0))
+        joints.append(Joint(JointType.REVOLUTE, 11, 14, np.array([0, 0, 1.0]), np.array([X0, -Y, 0.0]), 0.0, 1.6))
+        contacts.append((11, 14))
+    elif kind != "overlay_no_handle":
         parts.append(Part(13, "handle", np.eye(4), (_box([front - 0.035, free - 0.011, H / 2 - 0.12],
                                                           [front, free + 0.011, H / 2 + 0.12]),), 500.0))
         joints[1] = Joint(JointType.REVOLUTE, 11, 12, np.array([0, 0, -1.0]), hinge, 0.0, 1.6, handle=13)
@@ -69,7 +77,7 @@ def _cabinet(kind: str) -> tuple[Scene, np.ndarray]:
 @pytest.fixture(scope="module")
 def rebuilt(tmp_path_factory):
     out = {}
-    for kind in ("overlay", "inset", "overlay_no_handle", "overlay_hidden_side", "standoff"):
+    for kind in ("overlay", "inset", "overlay_no_handle", "overlay_hidden_side", "standoff", "pair_no_handle"):
         scene, hinge = _cabinet(kind)
         files = write_scan(scan_scene(scene, params_for_preset("realistic"), seed=0),
                            tmp_path_factory.mktemp(kind) / "scan")
@@ -120,6 +128,36 @@ def test_a_handleless_door_spanning_its_body_says_its_hinge_side_is_undecided(re
     rec, door, _ = rebuilt["overlay"]
     assert not any("hinge side undecided" in w for w in rec.warnings)
     assert not door.uncertainty.side_undecided
+
+
+def test_a_handleless_door_hinged_on_the_wrong_side_is_not_stated_as_certain(rebuilt):
+    """The scan of a handleless door spanning its body is the same whichever edge its author hinged it at, so for
+    one of the two authors recon's line is a door's width off: the joint must say its side is undecided, and the
+    two lines it then states (its own and the one at the door's other edge, which a robust certificate samples)
+    must hold either author's hinge within twice the stated spread."""
+    rec, door, hinge = rebuilt["overlay_no_handle"]
+    box = max((s for o in rec.objects for p in o.parts if p.part_id == door.child_part_id for s in p.solids),
+              key=lambda s: float(np.prod(s.size)))
+    other = other_edge_origin(door.origin, door.axis, box.T_world_part, box.size)
+    authors = (hinge, hinge * np.array([1.0, -1.0, 1.0]))       # hinged at +y, or the mirror image at -y
+    off = [np.hypot(*(door.origin - a)[:2]) for a in authors]
+    assert max(off) > 2 * Y - 0.05, off                          # one author's door: hinged on its free edge
+    assert door.uncertainty.side_undecided
+    for a in authors:
+        nearer = min(np.hypot(*(o - a)[:2]) for o in (door.origin, other))
+        assert nearer <= 2.0 * door.uncertainty.origin_m, (a, nearer, door.uncertainty.origin_m)
+
+
+def test_a_pair_of_handleless_doors_hinges_on_its_outer_edges_without_a_warning(rebuilt):
+    """Two doors meeting in the middle of their carcass: each door's edge beside the other is its free edge (its
+    position in its body, which a scan shows), so the side is decided and not flagged."""
+    rec, _, _ = rebuilt["pair_no_handle"]
+    doors = sorted((j for o in rec.objects for j in o.joints if j.type.value == "revolute"), key=lambda j: j.origin[1])
+    assert len(doors) == 2
+    for j, y in zip(doors, (-Y, Y)):
+        assert abs(j.origin[1] - y) < 0.01, (j.name, j.origin)
+        assert not j.uncertainty.side_undecided
+    assert not any("hinge side undecided" in w for w in rec.warnings), rec.warnings
 
 
 def test_without_points_at_the_hinge_edge_the_board_rule_stays():
