@@ -15,12 +15,14 @@ would recur with the same seed). A chunk running :data:`BACKSTOP_FACTOR` x its t
 
 Ray is started locally (``num_cpus=workers``) unless ``address`` names a cluster (``auto``, or
 ``ray://host:10001``); a Ray already initialised by the caller is used as it is and left running.
-A Ray started here is shut down when the run ends, on Ctrl-C or SIGTERM, and, through
+A local Ray starts without the autoscaler's monitor and the log monitor, which one machine and a driver
+taking no worker output do not use. A Ray started here is shut down when the run ends, on Ctrl-C or SIGTERM, and, through
 :mod:`simcheck.batching.guardian`, when the driver is killed outright.
 """
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import logging
 import signal
@@ -210,7 +212,6 @@ def ray_session(workers: int | None, address: str | None, usage: dict | None = N
     """Context manager: a Ray connection for the run (see the module docstring); yields the number of
     CPUs of the cluster. With a Ray started here, ``usage`` (if given) receives the CPU time of its
     processes just before it is shut down (see :func:`ray_cpu_seconds`)."""
-    import contextlib
 
     @contextlib.contextmanager
     def session():
@@ -230,7 +231,8 @@ def ray_session(workers: int | None, address: str | None, usage: dict | None = N
                 raise SimcheckInputError(f"--address {address}: no Ray cluster could be joined ({exc}); start "
                                          "one with `ray start --head`, or leave --address out for a local Ray") from exc
         else:
-            ray.init(address="local", num_cpus=workers, **kwargs)
+            with _without_monitors():
+                ray.init(address="local", num_cpus=workers, **kwargs)
             from simcheck.batching.guardian import start_guardian
             guardian = start_guardian()
         previous = {s: signal.getsignal(s) for s in (signal.SIGTERM, signal.SIGHUP)}
@@ -253,6 +255,32 @@ def ray_session(workers: int | None, address: str | None, usage: dict | None = N
                 stop_guardian(guardian)
 
     return session()
+
+
+@contextlib.contextmanager
+def _without_monitors():
+    """While a local Ray starts: its node is asked for neither the autoscaler's monitor (one machine does
+    not scale) nor the log monitor (the driver takes no worker output: ``log_to_driver=False``), as
+    ``ray start --no-monitor --include-log-monitor=False`` would; ``ray.init`` has no switch for them. The
+    two Python services cost ~0.8 s CPU at start and ~0.5 s a minute after (docs/decisions.md, "Ray's local
+    start without its monitors"). A Ray whose node parameters lack those fields starts as it is."""
+    try:
+        from ray._private.parameter import RayParams
+    except ImportError:
+        yield
+        return
+    init = RayParams.__init__
+
+    def lean(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        if hasattr(self, "no_monitor") and hasattr(self, "include_log_monitor"):
+            self.no_monitor, self.include_log_monitor = True, False
+
+    RayParams.__init__ = lean
+    try:
+        yield
+    finally:
+        RayParams.__init__ = init
 
 
 def ray_cpu_seconds() -> dict:

@@ -157,6 +157,13 @@ def _ray_descendants(pid: int) -> list[psutil.Process]:
         return []
 
 
+def _cmdline(proc: psutil.Process) -> str:
+    try:
+        return " ".join(proc.cmdline())
+    except psutil.Error:    # it ended in between
+        return ""
+
+
 def test_resume_after_the_driver_is_killed(kitchens, local_ray, tmp_path):
     scene = kitchens / "k1/truth.urdf"
     tasks = _movable(scene, 6)
@@ -172,6 +179,8 @@ def test_resume_after_the_driver_is_killed(kitchens, local_ray, tmp_path):
         assert driver.poll() is None, "the driver ended before it was killed"
         time.sleep(0.2)
     ray_procs = _ray_descendants(driver.pid)
+    # the local Ray runs without the autoscaler's monitor and the log monitor (runner._without_monitors)
+    assert ray_procs and not [c for c in map(_cmdline, ray_procs) if "monitor.py" in c]
     driver.send_signal(signal.SIGKILL)
     driver.wait()
     # no Ray process of the killed driver outlives it (its guardian ends them)
