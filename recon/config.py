@@ -334,8 +334,9 @@ class HandleConfig:
     """A handle's extents along the face come from the [p, 100 - p] percentiles (%) of its points clear
     of the face (widened by 1 / (1 - 2p/100))."""
     handle_middle_percentile: float = 10.0
-    """A bar's middle across it is the mean of this and the opposite percentile (%) of its points (bleed
-    and lateral noise spread its edges unevenly)."""
+    """A horizontal bar's middle across it (up the face) is the mean of this and the opposite percentile
+    (%) of its points (the top face seen from above pulls their median up); a vertical bar's is their
+    median (see ``recon.handle_shapes._middle_across``)."""
     handle_outer_percentile: float = 90.0
     """A bar's outer face lies at most at this percentile (%) of its points' heights off the face ..."""
     handle_outer_noise: float = 1.28

@@ -17,8 +17,9 @@ of (:func:`facing_plane`), after refinement. Measured along that face's outward 
   outer face, the ``handle_outer_percentile`` height less ``handle_outer_noise`` σ: posts and bleed
   pull the median in, a bar seen mostly from the front has its median on its outer face;
 - extents along the face from the ``[p, 100 - p]`` percentiles (``handle_extent_percentile``), widened
-  by ``1 / (1 - 2p/100)`` (exact for points spread evenly); the middle across the bar from the
-  ``handle_middle_percentile`` pair (bleed spreads its edges unevenly);
+  by ``1 / (1 - 2p/100)`` (exact for points spread evenly); the middle across the bar (see
+  :func:`_middle_across`): across a vertical bar (a horizontal direction) its points' median, across a
+  horizontal bar the mean of the ``handle_middle_percentile`` pair;
 - the longer in-face extent is the bar's length; shorter than ``handle_knob_max_length`` -> a knob;
 - the bar's thickness (across it and out from the face) is its measured width, at most
   ``handle_max_thickness`` (a wider measure is lateral noise and bleed, not a thicker bar);
@@ -127,6 +128,22 @@ def _seen_face(mount_points: np.ndarray | None, n: np.ndarray, d: float, centre:
     return seen, 1.4826 * float(np.median(np.abs(h[near] - seen))), int(near.sum())
 
 
+def _middle_across(across: np.ndarray, v: np.ndarray, config: HandleConfig) -> float:
+    """The middle (m) of a bar's points' coordinates ``across`` (k,) along the in-face unit direction
+    ``v`` (3,) world, z up.
+
+    A camera carried at standing height sees a horizontal bar from above: its top face adds points along
+    the bar's upper edge, which pull their median up; the mean of the ``handle_middle_percentile`` pair
+    finds the middle. A camera passing a vertical bar sees it along oblique rays whose depth noise
+    leaves a trail of points off one of its edges: the pair follows the trail, the median stays on the
+    bar. ``v`` counts as vertical within 45 deg of z.
+    """
+    if abs(float(v[2])) < np.sqrt(0.5):                 # across is horizontal: a vertical bar
+        return float(np.median(across))
+    mid_pct = config.handle_middle_percentile
+    return float(np.mean(np.percentile(across, [mid_pct, 100.0 - mid_pct])))
+
+
 def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
                   config: HandleConfig, fitting: FittingConfig, mount_points: np.ndarray | None = None) -> HandleShapes:
     """A handle's bar and posts (or knob's cap and stem) measured from its ``points`` (k, 3) world.
@@ -158,8 +175,7 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
     if width > length:                                 # u along the bar
         u, v = v, -u
         (mu, length), (mv, width) = _extent(q @ u, pct), _extent(q @ v, pct)
-    mid_pct = config.handle_middle_percentile
-    mv = float(np.mean(np.percentile(q @ v, [mid_pct, 100.0 - mid_pct])))
+    mv = _middle_across(q @ v, v, config)
     knob = length < config.handle_knob_max_length
     if knob:
         across = float(np.clip((length + width) / 2.0, fitting.min_thickness, config.handle_knob_max_diameter))

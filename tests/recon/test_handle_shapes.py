@@ -212,3 +212,36 @@ def test_reconstructed_cabinet_handles_are_bars_on_posts_in_scene_urdf(kitchen_r
         for p in posts:
             assert abs(float(np.min(p.corners()[:, 0])) - 0.5) < 0.006
         assert text.count(f'<collision name="{part.link}_collision') == 3
+
+
+def test_a_horizontal_bar_seen_from_above_is_centred_between_its_edges():
+    """A camera above a horizontal bar sees its top face as well as its front (as many points again along
+    the upper edge): the bar's middle across it stays between its edges, not up where the median went."""
+    rng = np.random.default_rng(3)
+    pts = _bar_cloud(rng, noise=0.003)
+    top = np.c_[rng.uniform(BAR_OUT - BAR_T, BAR_OUT, 150), rng.uniform(-BAR_L / 2, BAR_L / 2, 150),
+                BAR_T / 2 + rng.normal(0.0, 0.001, 150)]
+    cloud = np.vstack([pts, top])
+    assert np.median(cloud[cloud[:, 0] > 0.01, 2]) > 0.003          # the median alone would be 3+ mm up
+    hs = handle_shapes(cloud, _box_envelope(0.0, 0.06, 0.12, 0.03), FACE, CFG.handles, CFG.fitting)
+    assert hs.style is HandleStyle.BAR, hs.reason
+    assert abs(hs.shapes[0].center[2]) < 0.002, hs.shapes[0].center
+
+
+def test_a_vertical_bar_whose_points_trail_off_one_edge_is_centred_on_the_bar():
+    """Depth noise along a passing camera's oblique rays trails a vertical bar's points up to 3 cm off one
+    edge (a quarter of them): the bar's middle across it (horizontal) is where most of its points are,
+    not halfway between percentiles the trail has moved."""
+    rng = np.random.default_rng(2)
+    pts = _bar_cloud(rng, noise=0.003)
+    n = len(pts) // 4
+    trail = np.c_[rng.uniform(BAR_OUT - BAR_T, BAR_OUT, n), rng.uniform(-BAR_L / 2, BAR_L / 2, n),
+                  BAR_T / 2 + rng.exponential(0.01, n).clip(max=0.03)]
+    upright = np.vstack([pts, trail])[:, [0, 2, 1]]                  # the bar along z, across y
+    across = upright[upright[:, 0] > 0.01, 1]
+    assert np.mean(np.percentile(across, [10, 90])) > 0.004         # the percentile pair would be 4+ mm off
+    hs = handle_shapes(upright, _box_envelope(0.0, 0.06, 0.03, 0.12), FACE, CFG.handles, CFG.fitting)
+    assert hs.style is HandleStyle.BAR, hs.reason
+    bar = hs.shapes[0]
+    assert abs(bar.T_world_part[2, 0]) > 0.99                        # along z
+    assert abs(bar.center[1]) < 0.003, bar.center
