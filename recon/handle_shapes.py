@@ -19,7 +19,7 @@ of (:func:`facing_plane`), after refinement. Measured along that face's outward 
 - extents along the face from the ``[p, 100 - p]`` percentiles (``handle_extent_percentile``), widened
   by ``1 / (1 - 2p/100)`` (exact for points spread evenly); the middle across the bar (see
   :func:`_middle_across`): across a vertical bar (a horizontal direction) its points' median, across a
-  horizontal bar the mean of the ``handle_middle_percentile`` pair;
+  horizontal bar the mean of the ``handle_middle_percentile`` pair; a knob's cap so along both directions;
 - the longer in-face extent is the bar's length; shorter than ``handle_knob_max_length`` -> a knob;
 - the bar's thickness (across it and out from the face) is its measured width, at most
   ``handle_max_thickness`` (a wider measure is lateral noise and bleed, not a thicker bar);
@@ -128,6 +128,11 @@ def _seen_face(mount_points: np.ndarray | None, n: np.ndarray, d: float, centre:
     return seen, 1.4826 * float(np.median(np.abs(h[near] - seen))), int(near.sum())
 
 
+def _is_horizontal(direction: np.ndarray) -> bool:
+    """Whether the unit ``direction`` (3,) world, z up, lies within 45 deg of horizontal."""
+    return abs(float(direction[2])) < np.sqrt(0.5)
+
+
 def _middle_across(across: np.ndarray, v: np.ndarray, config: HandleConfig) -> float:
     """The middle (m) of a bar's points' coordinates ``across`` (k,) along the in-face unit direction
     ``v`` (3,) world, z up.
@@ -136,9 +141,9 @@ def _middle_across(across: np.ndarray, v: np.ndarray, config: HandleConfig) -> f
     the bar's upper edge, which pull their median up; the mean of the ``handle_middle_percentile`` pair
     finds the middle. A camera passing a vertical bar sees it along oblique rays whose depth noise
     leaves a trail of points off one of its edges: the pair follows the trail, the median stays on the
-    bar. ``v`` counts as vertical within 45 deg of z.
+    bar. A knob's cap is placed so along both in-face directions.
     """
-    if abs(float(v[2])) < np.sqrt(0.5):                 # across is horizontal: a vertical bar
+    if _is_horizontal(v):                              # a vertical bar
         return float(np.median(across))
     mid_pct = config.handle_middle_percentile
     return float(np.mean(np.percentile(across, [mid_pct, 100.0 - mid_pct])))
@@ -177,6 +182,8 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
         (mu, length), (mv, width) = _extent(q @ u, pct), _extent(q @ v, pct)
     mv = _middle_across(q @ v, v, config)
     knob = length < config.handle_knob_max_length
+    if knob:                                           # a knob has no along: its middle as across a bar
+        mu = _middle_across(q @ u, u, config)
     if knob:
         across = float(np.clip((length + width) / 2.0, fitting.min_thickness, config.handle_knob_max_diameter))
         depth = min(across, config.handle_max_thickness)

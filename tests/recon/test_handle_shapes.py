@@ -98,9 +98,8 @@ def test_bar_found_when_its_envelope_is_a_cylinder_along_the_bar():
     _check_bar(handle_shapes(_bar_cloud(rng, noise=0.002), env, FACE, CFG.handles, CFG.fitting), tol_out=0.005)
 
 
-def test_knob_is_a_cap_on_a_stem():
-    rng = np.random.default_rng(3)
-    r_cap, r_stem, out = 0.018, 0.007, 0.045
+def _knob_cloud(rng: np.random.Generator, r_cap: float, r_stem: float, out: float) -> np.ndarray:
+    """A knob's cap (front disc and the half of its side facing the camera) on its stem, about y = z = 0."""
     a = rng.uniform(0, 2 * np.pi, 200)
     rad = r_cap * np.sqrt(rng.uniform(0, 1, 200))
     cap_front = np.c_[np.full(200, out), rad * np.cos(a), rad * np.sin(a)]
@@ -109,6 +108,12 @@ def test_knob_is_a_cap_on_a_stem():
     stem = np.c_[rng.uniform(0, out - 0.02, 15), r_stem * np.sin(b[:15]), r_stem * np.cos(b[:15])]
     pts = np.vstack([cap_front, cap_side, stem])
     pts[:, 0] += rng.normal(0, 0.002, len(pts))
+    return pts
+
+
+def test_knob_is_a_cap_on_a_stem():
+    r_cap, r_stem, out = 0.018, 0.007, 0.045
+    pts = _knob_cloud(np.random.default_rng(3), r_cap, r_stem, out)
     hs = handle_shapes(pts, _box_envelope(0.0, out, r_cap, r_cap), FACE, CFG.handles, CFG.fitting)
     assert hs.style is HandleStyle.KNOB, hs.reason
     cap, stem_shape = hs.shapes
@@ -245,3 +250,19 @@ def test_a_vertical_bar_whose_points_trail_off_one_edge_is_centred_on_the_bar():
     bar = hs.shapes[0]
     assert abs(bar.T_world_part[2, 0]) > 0.99                        # along z
     assert abs(bar.center[1]) < 0.003, bar.center
+
+
+def test_a_knob_whose_points_trail_off_one_side_is_centred_on_its_cap():
+    """A knob's points trailing up to 3 cm off one side (horizontally, as a passing camera leaves them; a sixth
+    of them): its cap stays near where most of its points are, not halfway between its extremes."""
+    rng = np.random.default_rng(4)
+    r_cap, out = 0.017, 0.045
+    pts = _knob_cloud(rng, r_cap, 0.007, out)
+    n = len(pts) // 6
+    trail = np.c_[rng.uniform(out - 0.02, out, n), r_cap + rng.exponential(0.01, n).clip(max=0.03),
+                  rng.uniform(-r_cap, r_cap, n)]
+    cloud = np.vstack([pts, trail])
+    assert np.mean(np.percentile(cloud[cloud[:, 0] > 0.01, 1], [2, 98])) > 0.01     # the extremes' middle: 1 cm off
+    hs = handle_shapes(cloud, _box_envelope(0.0, out, 0.03, r_cap), FACE, CFG.handles, CFG.fitting)
+    assert hs.style is HandleStyle.KNOB, hs.reason
+    assert np.linalg.norm(hs.shapes[0].center[1:]) < 0.005, hs.shapes[0].center
