@@ -16,8 +16,8 @@ would recur with the same seed). A chunk running :data:`BACKSTOP_FACTOR` x its t
 Ray is started locally (``num_cpus=workers``) unless ``address`` names a cluster (``auto``, or
 ``ray://host:10001``); a Ray already initialised by the caller is used as it is and left running.
 A local Ray starts without the autoscaler's monitor and the log monitor, which one machine and a driver
-taking no worker output do not use. A Ray started here is shut down when the run ends, on Ctrl-C or SIGTERM, and, through
-:mod:`simcheck.batching.guardian`, when the driver is killed outright.
+taking no worker output do not use. A Ray started here is shut down when the run ends, on Ctrl-C or
+SIGTERM, and, through :mod:`simcheck.batching.guardian`, when the driver is killed outright.
 """
 
 from __future__ import annotations
@@ -261,9 +261,9 @@ def ray_session(workers: int | None, address: str | None, usage: dict | None = N
 def _without_monitors():
     """While a local Ray starts: its node is asked for neither the autoscaler's monitor (one machine does
     not scale) nor the log monitor (the driver takes no worker output: ``log_to_driver=False``), as
-    ``ray start --no-monitor --include-log-monitor=False`` would; ``ray.init`` has no switch for them. The
-    two Python services cost ~0.8 s CPU at start and ~0.5 s a minute after (docs/decisions.md, "Ray's local
-    start without its monitors"). A Ray whose node parameters lack those fields starts as it is."""
+    ``ray start --no-monitor --include-log-monitor=False`` would; ``ray.init`` has no switch for them (their
+    cost: docs/decisions.md, "Ray's local start without its monitors"). A Ray whose node parameters lack
+    those fields starts as it is."""
     try:
         from ray._private.parameter import RayParams
     except ImportError:
