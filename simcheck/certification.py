@@ -309,6 +309,26 @@ def certified_files(files: dict, out_dir: Path | None) -> dict:
             for role, p in files.items() if p is not None and Path(p).is_file()}
 
 
+SIDE_CAVEAT = ("the scan leaves this door's hinge side undecided (graph.json: side_undecided): it was certified "
+               "hinged at the estimated edge only; a robust certificate (--robust N) hinges half of its worlds at "
+               "the other edge, or certify --against a reference")
+"""Appended to the reason of a door certified on an estimate whose hinge side recon left undecided."""
+
+
+def _with_side_caveat(scene: Path, cert: TaskCertificate) -> TaskCertificate:
+    """``cert`` with :data:`SIDE_CAVEAT` after its reason when it certifies a door of ``scene`` (an estimate,
+    no reference) whose hinge side graph.json beside it flags undecided (:mod:`simcheck.hinge_side`)."""
+    if cert.status is not Outcome.CERTIFIED or not cert.kind.endswith("door"):
+        return cert
+    from simcheck.robust_spreads import joint_spreads_for
+
+    _, centre = joint_spreads_for(scene, cert.joint, "revolute")
+    if centre is None or centre.other_origin is None:
+        return cert
+    log.warning("%s: %s", cert.joint, SIDE_CAVEAT)
+    return dataclasses.replace(cert, reason=f"{cert.reason}; {SIDE_CAVEAT}")
+
+
 def _run_task(session: Session, task: OpenTask, planner: Callable, seed: int, criteria: CriteriaConfig,
               out_dir: Path | None, images: bool, video: bool, start, load_seconds: float | None) -> TaskCertificate:
     """Certify ``task`` in ``session``'s worlds as they are now; the certificate records the start state
@@ -446,6 +466,8 @@ def certify(scene, tasks, *, against=None, seed: int = 0, out=None, robot=None, 
                 session.freeze_far = not gui
                 results.append(_run_task(session, task, planner, seed, criteria, out_dir, images, video, None,
                                          session.load_seconds))
+    if against is None:
+        results = [_with_side_caveat(scene, c) for c in results]
     certificate = Certificate(tasks=tuple(results), scene=_recorded_path(scene, out_dir),
                               against=_recorded_path(against, out_dir) if against else None,
                               robot=str(sim_robot.urdf), criteria=criteria.to_dict(), seeds={"seed": seed},

@@ -88,6 +88,19 @@ def test_a_door_hinged_at_its_other_edge_does_not_open_so_it_is_not_certified_ro
     assert cert[DOOR].status.value == "failed"
 
 
+def test_a_plain_certificate_of_a_side_undecided_door_says_it_holds_for_the_estimated_side_only(tmp_path):
+    from simcheck.certification import SIDE_CAVEAT
+
+    undecided = certify(_undecided(tmp_path / "u"), [f"open-door:{DOOR}"], images=False)[DOOR]
+    assert undecided.status.value == "certified" and undecided.reason.endswith(SIDE_CAVEAT), undecided.reason
+    decided = certify(_with_graph(tmp_path / "d", DATA / "cabinet.urdf"), [f"open-door:{DOOR}"], images=False)[DOOR]
+    assert decided.status.value == "certified" and SIDE_CAVEAT not in decided.reason
+    assert decided.reason == undecided.reason[:-len(SIDE_CAVEAT) - 2]
+    # against a reference the verdict is the reference's: no caveat
+    ref = certify(_undecided(tmp_path / "r"), [f"open-door:{DOOR}"], against=DATA / "cabinet.urdf", images=False)[DOOR]
+    assert SIDE_CAVEAT not in ref.reason
+
+
 def test_the_cli_names_a_side_undecided_that_is_not_a_boolean_and_exits_2(tmp_path):
     import subprocess
     import sys
