@@ -16,8 +16,9 @@ A leg the camera hardly saw at all (under a bed frame: fewer than ``min_part_poi
 none) is still declared in labels.json; a bed, table or chair stands on four legs at the corners of a
 rectangle, so missing legs are placed at the corners the fitted ones leave free, as copies of the
 nearest fitted leg (``complete_missing_legs``). A bed frame's head end is hidden under the mattress and
-behind the headboard; the frame is extended along its length to the headboard when that lies within
-``completion_reach`` beyond it (``complete_reaching_parts``).
+behind the headboard, its far rail under the mattress; the frame is extended to span its mattress and
+along its length to the headboard when that lies within ``completion_reach`` beyond it
+(``complete_reaching_parts``).
 Nothing else is changed.
 """
 
@@ -198,19 +199,22 @@ def complete_missing_legs(category: str, prims: dict[int, Primitive], labels: di
 
     prims : {part_id: fitted primitive}; labels : {part_id: label} of the fitted parts
     skipped : the object's parts with too few points to fit (:attr:`recon.scan.ObjectPoints.skipped`)
-    base : the part the legs carry (its horizontal axes and centre frame the leg rectangle)
-    Applies when the category stands on four legs, at least two legs are fitted and the skipped legs make
-    up four. The fitted legs' centres, in the base's horizontal axes, give the rectangle's two x and two
-    y values (one value is mirrored about the base's centre when the two seen legs share it); the
+    base : the part the legs carry (its horizontal axes and centre frame the leg rectangle; a bed frame
+        already extended to span its mattress and reach its headboard, :func:`complete_reaching_parts`)
+    Applies when the category stands on four legs, at least two legs are fitted (one when ``base`` is
+    fitted: a bed frame may hide three) and the skipped legs make up four. The fitted legs' centres, in the
+    base's horizontal axes, give the rectangle's two x and two y values (a value is mirrored about the
+    base's centre when the seen legs share it); the
     missing legs go to the free corners — a leg with a few points to the corner nearest them (within
     ``completion_reach``), the others in part-id order — each a copy of the nearest fitted leg.
     Returns (prims with the placed legs added, {part_id: (3,) world centre of each placed leg}).
     """
     legs = [i for i, lab in labels.items() if lab == "leg"]
     missing = sorted((p for p in skipped if p.label == "leg"), key=lambda p: p.part_id)
-    if category not in LEGGED_CATEGORIES or len(legs) < 2 or not missing or len(legs) + len(missing) != 4:
-        return dict(prims), {}
     frame = prims[base] if base in prims else None
+    fewest = 1 if frame is not None else 2            # one leg's mirror images need the base's centre
+    if category not in LEGGED_CATEGORIES or len(legs) < fewest or not missing or len(legs) + len(missing) != 4:
+        return dict(prims), {}
     if frame is not None:
         R = frame.T_world_part[:3, :3]
         horiz = sorted(range(3), key=lambda k: abs(R[2, k]))[:2]
@@ -250,26 +254,61 @@ def complete_missing_legs(category: str, prims: dict[int, Primitive], labels: di
 _REACHES = {("frame", "headboard")}
 """(label, label it reaches): a bed frame starts at its headboard."""
 
+_SPANS = {("frame", "mattress")}
+"""(label, label it spans): a bed frame is at least as long and wide as the mattress it carries."""
 
-def complete_reaching_parts(prims: dict[int, Primitive], labels: dict[int, str],
-                            config: CompletionConfig, contacts: ContactConfig) -> tuple[dict[int, Primitive], dict[int, float]]:
-    """Extend a box (a bed frame) along a horizontal axis of its own to the part it reaches by template
-    (its headboard) when that part's near face lies beyond the box's end by more than ``theta_d`` and at
-    most ``completion_reach`` (m), facing it. Returns (new prims, {part_id: metres added})."""
+
+def _face_reach(prim: Primitive, axis: np.ndarray) -> float:
+    """How far (m) along the unit ``axis`` (3,) the centres of the box ``prim``'s faces reach: its extent there
+    without the corners a slight turn swings out (1.5 deg across a 2 m mattress: 2.6 cm)."""
+    R, h = prim.T_world_part[:3, :3], prim.size / 2
+    return float(prim.center @ axis + np.max(np.abs(R.T @ axis) * h))
+
+
+def _toward(R: np.ndarray, flat: list[int], d: np.ndarray) -> tuple[int, float]:
+    """(axis k among ``flat`` of the frame ``R`` (3, 3) nearest the direction ``d`` (3,), the sign along it)."""
+    k = max(flat, key=lambda a: abs(float(R[:, a] @ d)))
+    return k, float(np.sign(R[:, k] @ d))
+
+
+def complete_reaching_parts(prims: dict[int, Primitive], labels: dict[int, str], config: CompletionConfig,
+                            contacts: ContactConfig, normals: dict[int, np.ndarray | None] | None = None
+                            ) -> tuple[dict[int, Primitive], dict[int, float]]:
+    """Extend a box (a bed frame) along its horizontal axes, but toward the part it reaches (its headboard), to the
+    ends of the part it carries by template (its mattress) where that part reaches past it by more than
+    ``theta_d`` and the box's end there was not seen
+    (the frame's far rail hides under the mattress; fewer than ``hidden_face_points`` of its points' normals
+    point out of that end), then along a horizontal axis to the part it reaches by template (its headboard)
+    when that part's near face lies beyond the box's end by more than ``theta_d`` and at most
+    ``completion_reach`` (m), facing it. ``normals`` : {part_id: its points' unit normals (n, 3), world,
+    oriented out of the part}; a part without them shows no end. Returns (new prims, {part_id: metres added})."""
     out, changes = dict(prims), {}
     for i, prim in prims.items():
-        targets = [j for j in prims if (labels[i], labels[j]) in _REACHES]
-        if prim.kind is not PrimitiveKind.BOX or not targets:
+        if prim.kind is not PrimitiveKind.BOX:
             continue
         R = prim.T_world_part[:3, :3]
-        for j in targets:
-            d = prims[j].center - prim.center
-            k = max((a for a in range(3) if abs(R[2, a]) < 0.5), key=lambda a: abs(float(R[:, a] @ d)))
-            axis = R[:, k] * np.sign(R[:, k] @ d)
-            end = float(np.max(prim.corners() @ axis))
+        flat = [a for a in range(3) if abs(R[2, a]) < 0.5]
+        reached = [j for j in prims if (labels[i], labels[j]) in _REACHES]
+        toward = {_toward(R, flat, prims[j].center - prim.center) for j in reached}
+        for j in (j for j in prims if (labels[i], labels[j]) in _SPANS):
+            for k in flat:
+                for sign in (-1.0, 1.0):
+                    if (k, sign) in toward:
+                        continue                    # the end at the headboard: reached below, never past it
+                    axis = R[:, k] * sign
+                    gap = _face_reach(prims[j], axis) - float(np.max(out[i].corners() @ axis))
+                    n = (normals or {}).get(i)
+                    shown = 0 if n is None else int(np.sum(n @ axis > 0.8))
+                    if gap > contacts.theta_d and shown < config.hidden_face_points:
+                        out[i] = _extended(out[i], k, axis, gap)
+                        changes[i] = changes.get(i, 0.0) + gap
+        for j in reached:
+            k, sign = _toward(R, flat, prims[j].center - out[i].center)
+            axis = R[:, k] * sign
+            end = float(np.max(out[i].corners() @ axis))
             near = float(np.min(prims[j].corners() @ axis))
             gap = near - end
             if contacts.theta_d < gap <= config.completion_reach:
                 out[i] = _extended(out[i], k, axis, gap)
-                changes[i] = gap
+                changes[i] = changes.get(i, 0.0) + gap
     return out, changes

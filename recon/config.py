@@ -252,6 +252,9 @@ class CompletionConfig:
 
     completion_reach: float = 0.3
     """Legs are extended to a surface above / below them, and hidden legs placed, at most this far (m)."""
+    hidden_face_points: int = 12
+    """A box end whose part has fewer points with normals out of it (cos > 0.8) was not seen: a bed frame's
+    rail under its mattress (completion.complete_reaching_parts); as ``FittingConfig.min_face_points``."""
 
 
 @dataclass(frozen=True)

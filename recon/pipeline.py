@@ -13,7 +13,8 @@ Stages, in order (each a function below; per-object state travels in an :class:`
                        tilted off the up direction or turned off the yaw its object's faces show is refitted
                        along them (object_up.py, object_yaw.py); a leg's section from its faces' points
                        (post_section.py)
-    complete_parts     hidden legs placed; legs, reaching and mounted parts extended (completion.py)
+    complete_parts     a bed frame extended to its mattress and headboard; hidden legs placed; legs and
+                       mounted parts extended (completion.py)
     contact_graph      surface planes Π, then the Eq. 1 contacts between parts (planes.py, contacts.py)
     build_part_tree    Eq. 4: the maximum spanning arborescence of the contacts (part_tree.py)
     refine             Alg. 1: children rotated / moved onto their parents' planes (refinement.py)
@@ -445,10 +446,17 @@ def _base_along_measured_frame(obj: ObjectPoints, base: PartPoints, fitted: dict
 
 
 def complete_parts(state: ObjectState, run: _Run) -> None:
-    """Hidden legs placed at the free corner of their fitted legs' rectangle; legs, parts that reach
-    another part and mounted parts (handles) extended onto what they stand on (completion.py)."""
+    """A bed frame extended to span its mattress and reach its headboard; hidden legs placed at the free
+    corners of their fitted legs' rectangle; legs and mounted parts (handles) extended onto what they stand
+    on (completion.py)."""
     config, contacts, obj, labels = run.config.completion, run.config.contacts, state.source, state.labels
-    prims, placed = complete_missing_legs(obj.category, state.prims, labels, obj.skipped, config, state.base)
+    # a bed frame spans its mattress and reaches its headboard before its hidden legs are mirrored about it
+    normals = {p.part_id: p.normals for p in obj.parts}
+    prims, reached = complete_reaching_parts(state.prims, labels, config, contacts, normals)
+    for i, gap in reached.items():
+        log.info("object %d part %d (%s): extended %.3f m to the parts it spans and reaches", obj.id, i, labels[i],
+                 gap)
+    prims, placed = complete_missing_legs(obj.category, prims, labels, obj.skipped, config, state.base)
     for i, centre in placed.items():
         leg = next(p for p in obj.skipped if p.part_id == i)
         labels[i] = leg.label
@@ -458,9 +466,6 @@ def complete_parts(state: ObjectState, run: _Run) -> None:
         run.warn(f"{link_name(obj.category, obj.id, leg.label, i)}: part {i} ({leg.label}) has "
                  f"{len(leg.points)} points; placed at the free corner of its fitted legs' rectangle "
                  f"({centre[0]:.3f}, {centre[1]:.3f})")
-    prims, reached = complete_reaching_parts(prims, labels, config, contacts)
-    for i, gap in reached.items():
-        log.info("object %d part %d (%s): extended %.3f m to the part it reaches", obj.id, i, labels[i], gap)
     prims, completed = complete_vertical_parts(prims, labels, config, contacts)
     for i, (down, up) in completed.items():
         log.info("object %d part %d (%s): extended %.3f m down, %.3f m up to its supports (negative: cut back)",

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from recon.model import JointType
 
-__all__ = ["JointTemplate", "ROOT_LABELS", "MOVABLE_LABELS", "template_for", "expected_contact"]
+__all__ = ["JointTemplate", "ROOT_LABELS", "MOVABLE_LABELS", "template_for", "expected_contact", "designed_neighbours"]
 
 ROOT_LABELS = ("body", "frame", "base", "top", "seat", "mattress")
 """Labels that can be an object's base part (fixed to the world), in order of preference."""
@@ -75,4 +75,10 @@ def expected_contact(category: str, label_a: str, label_b: str) -> bool:
     ta, tb = template_for(category, label_a), template_for(category, label_b)
     if ta is None or tb is None or label_b in ta.parents or label_a in tb.parents:
         return True
+    return designed_neighbours(category, label_a, label_b)
+
+
+def designed_neighbours(category: str, label_a: str, label_b: str) -> bool:
+    """True when parts ``label_a`` and ``label_b`` of a ``category`` object touch by design without one
+    hanging from the other (a bed's mattress against its headboard)."""
     return frozenset({label_a, label_b}) in _NEIGHBOURS.get(category, frozenset())

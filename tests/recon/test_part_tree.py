@@ -111,3 +111,32 @@ def test_an_uncontacted_tree_edge_to_an_expected_parent_scores_its_near_parent_w
     assert d < 0.02
     assert s[(2, 4)] == pytest.approx(CFG.tree.near_parent_weight * (1 - d / CFG.tree.near_parent_distance))
     assert s[(2, 4)] > s[(2, 3)] == pytest.approx(0.93 * CFG.tree.foreign_parent_penalty)
+
+
+def _bed_with_gap(gap):
+    # a frame (root) carrying a leg, a headboard and a mattress whose hidden head end stops ``gap`` short of the
+    # headboard's face (ScanNet-style random/0 bed5: 2.3 cm, the headboard's fit tilted 4 deg; Eq. 1 misses it)
+    prims = {1: box([0, 0, 0.15], [1.95, 1.1, 0.30]), 2: box([0, 0, 0], [0.06, 0.06, 0.15]),
+             6: box([1.95, -0.02, 0.0], [2.0, 1.12, 1.05]), 7: box([0.0, 0.0, 0.30], [1.95 - gap, 1.1, 0.52])}
+    labels = {1: "frame", 2: "leg", 6: "headboard", 7: "mattress"}
+    parts = tuple(PartFit(i, labels[i], f"bed1_{labels[i]}{i}", prims[i], 0.0, {}, 100, ()) for i in prims)
+    joints = (JointEstimate("bed1_frame1_joint", JointType.FIXED, None, 1, [0, 0, 1], [0, 0, 0]),) + tuple(
+        JointEstimate(f"bed1_{labels[i]}{i}_joint", JointType.FIXED, 1, i, [0, 0, 1], [0, 0, 0]) for i in (2, 6, 7))
+    edges = contact_edges({i: planes(p) for i, p in prims.items()}, CFG.contacts)
+    return ObjectReconstruction(1, "bed", "bed1", 1, parts, edges, joints, (), np.eye(4), np.ones(3)), edges
+
+
+def test_a_mattress_a_few_cm_short_of_its_headboard_scores_their_designed_contact_by_its_distance():
+    bed, edges = _bed_with_gap(0.03)
+    assert not any({e.parent_part_id, e.child_part_id} == {6, 7} for e in edges)      # Eq. 1: 3 cm > theta_d
+    s = contact_scores(bed, CFG.tree)
+    near = CFG.tree.near_parent_weight * (1 - 0.03 / CFG.tree.near_parent_distance)
+    assert s[(6, 7)] == pytest.approx(near)
+    # it outranks the foreign contacts a noisy bed shows (a leg against the headboard: 0.2 x Cont <= 0.2)
+    assert s[(6, 7)] > CFG.tree.foreign_parent_penalty
+    assert (6, 7) not in contact_scores(bed, CFG.tree, weighted=False)
+    # a mattress farther from its headboard than near_parent_distance does not touch it: no score
+    far, _ = _bed_with_gap(CFG.tree.near_parent_distance + 0.02)
+    assert (6, 7) not in contact_scores(far, CFG.tree)
+    # nor do two parts that are no designed neighbours (the leg beside the headboard's foot)
+    assert (2, 6) not in contact_scores(far, CFG.tree)
