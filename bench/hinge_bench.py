@@ -38,7 +38,7 @@ import sys
 import tempfile
 import time
 from collections import defaultdict
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -155,6 +155,40 @@ def truth_scene(scene):
     return dataclasses.replace(scene, objects=objs)
 
 
+def in_truth_frame(rec, T_scan_world: np.ndarray, object_id: int) -> list:
+    """The objects of ``rec`` (a :class:`recon.Reconstruction`, in its output frame) with id ``object_id``,
+    moved into the truth's (world) frame: back through the output frame (``rec.T_world_scan``) and the scan's
+    frame (``T_scan_world`` (4, 4), the scanner's: a preset may tilt the frame and put its floor 4-7 cm off
+    the origin, which recon keeps in its output, and a scene without floor points gives recon nothing to
+    level on). Without it every hinge on such a scan is off by the frame's offset, not by recon's fit."""
+    T_back = np.linalg.inv(np.asarray(rec.T_world_scan) @ np.asarray(T_scan_world))
+    return [o.transformed(T_back) for o in rec.objects if o.id == object_id]
+
+
+def split_fronts_matched(truth, joints: tuple, obj) -> tuple:
+    """``joints`` (estimated, of ``obj``, in the truth's frame) with the child ids of split fronts set to the
+    true part they fitted: recon gives the pieces of a front labelled as one part (a segmentation's merged
+    drawer column, :mod:`recon.front_split`) new ids above every id in the scan, so matching by child id alone
+    calls them missing. A movable joint whose child id is no true part's takes the id of the true front
+    (``truth``, a :class:`recon.metrics.TruthObject`) left without an estimated joint when its child's box
+    centre lies in the middle half of that front's largest box (a piece still two fronts wide, centred
+    between them, fits none); every other joint is unchanged."""
+    true_ids = {p.id for p in truth.parts}
+    free = {j.child_part_id for j in truth.joints if j.parent_part_id is not None} - {j.child_part_id for j in joints}
+    out = []
+    for j in joints:
+        if j.child_part_id not in true_ids and j.type.value != "fixed":
+            c = obj.part(j.child_part_id).primitive.T_world_part[:3, 3]
+            for pid in sorted(free):
+                box = max(truth.part(pid).primitives, key=lambda q: float(np.prod(q.size)))
+                if np.all(np.abs(box.to_part(c[None])[0]) <= box.size / 4):
+                    j = replace(j, child_part_id=pid)
+                    free.discard(pid)
+                    break
+        out.append(j)
+    return tuple(out)
+
+
 def score_object(built, seed: int, preset: str, folder: Path) -> tuple[list[DoorRow], list[DrawerRow], str]:
     """Scan ``built`` (a :class:`thirdparty.build.BuiltObject`) with ``preset`` and ``seed``, reconstruct it
     and score its joints. Returns (door rows, drawer rows, error message or "")."""
@@ -170,21 +204,23 @@ def score_object(built, seed: int, preset: str, folder: Path) -> tuple[list[Door
     cat, name = built.spec.category, built.spec.name
     scene, _ = scene_of(built)
     truth = truth_from_dict(truth_dict_from_scene(truth_scene(scene)), source=name).objects[0]
-    files = write_scan(scan_scene(scene, params_for_preset(preset), seed=seed), folder / f"{name}_{seed}")
+    scan = scan_scene(scene, params_for_preset(preset), seed=seed)
+    files = write_scan(scan, folder / f"{name}_{seed}")
     try:
         rec = recon.reconstruct(files["scan_ply"], files["labels_json"], seed=seed)
     except Exception as exc:          # a failed reconstruction is a result of this benchmark
         return [], [], f"{name} seed {seed}: recon failed: {type(exc).__name__}: {exc}"
-    est = [estimate_from_reconstruction(o, rec.config) for o in rec.objects if o.id == truth.id]
+    objs = in_truth_frame(rec, scan.T_scan_world, truth.id)
+    est = [estimate_from_reconstruction(o, rec.config) for o in objs]
     if not est:
         return [], [], f"{name} seed {seed}: object {truth.id} not reconstructed"
     centres = {p.id: p.centre for p in truth.parts}
+    est[0] = replace(est[0], joints=split_fronts_matched(truth, est[0].joints, objs[0]))
     by_child = {j.child_part_id: j for j in est[0].joints}
-    joint_of = {j.child_part_id: j.name for o in rec.objects if o.id == truth.id for j in o.joints}
+    joint_of = {j.child_part_id: j.name for o in objs for j in o.joints}
     undecided = {n for n in joint_of.values() if any(w.startswith(f"{n}: hinge side undecided") for w in rec.warnings)}
-    stated = {j.child_part_id: j.uncertainty.origin_m for o in rec.objects if o.id == truth.id for j in o.joints
-              if j.uncertainty is not None}
-    solids = {p.part_id: p.solids for o in rec.objects if o.id == truth.id for p in o.parts}
+    stated = {j.child_part_id: j.uncertainty.origin_m for o in objs for j in o.joints if j.uncertainty is not None}
+    solids = {p.part_id: p.solids for o in objs for p in o.parts}
     doors, drawers = [], []
     for c in compare_joints(truth.joints, est[0].joints, centres):
         label = truth.part(c.child_part_id).label
