@@ -145,7 +145,7 @@ def scan_scene(scene: Scene, params: ScanParams, seed: int = 0) -> Scan:
     pid = degrade.label_fragments(pts, oid, pid, params.fragments_per_object, params.fragment_radius, rng)
     oid, pid = degrade.bleed_into_background(pts, oid, pid, params.background_bleed_width,
                                              params.background_bleed_prob, rng)
-    pid, labels = _merged_fronts(scene, pts, oid, pid, params.merge_fronts_prob, rng)
+    pid, labels = _merged_fronts(scene, pts, nrm, oid, pid, params.merge_fronts_prob, rng)
     # colour lookup table indexed by part id + 1 (row 0 = background/wall)
     lut = np.tile(np.array(LABEL_RGBA["wall"], float), (max(label_of, default=0) + 2, 1))
     for part_id, label in label_of.items():
@@ -213,11 +213,13 @@ def _tilted_objects(scene: Scene, pts: np.ndarray, nrm: np.ndarray, oid: np.ndar
     return pts, nrm
 
 
-def _merged_fronts(scene: Scene, pts: np.ndarray, oid: np.ndarray, pid: np.ndarray, prob: float,
+def _merged_fronts(scene: Scene, pts: np.ndarray, nrm: np.ndarray, oid: np.ndarray, pid: np.ndarray, prob: float,
                    rng: np.random.Generator) -> tuple[np.ndarray, dict]:
     """(part ids, labels.json dict): with probability ``prob`` per column of two or more drawer fronts
     (same lateral place in their object, within 5 cm), the column's points carry the lowest drawer's id
-    and labels.json lists that drawer only."""
+    and labels.json lists that drawer only. Lateral: the object's horizontal axis across the one its drawers'
+    points' normals ``nrm`` (n, 3, world) mostly lie along (the fronts face it), whichever way its author
+    turned the object's frame."""
     labels = labels_from_scene(scene)
     if prob <= 0:
         return pid, labels
@@ -226,11 +228,13 @@ def _merged_fronts(scene: Scene, pts: np.ndarray, oid: np.ndarray, pid: np.ndarr
     for o in scene.objects:
         drawers = [p.id for p in o.parts if p.label == "drawer"]
         where = {}
+        facing = np.abs(nrm[(oid == o.id) & np.isin(pid, drawers)] @ o.T_world_object[:3, :3]).sum(axis=0)
+        lateral = 1 if facing[0] >= facing[1] else 0
         for d in drawers:
             m = (oid == o.id) & (pid == d)
             if m.sum() >= 3:
                 q = (pts[m] - o.T_world_object[:3, 3]) @ o.T_world_object[:3, :3]
-                where[d] = (float(np.median(q[:, 1])), float(np.median(q[:, 2])))
+                where[d] = (float(np.median(q[:, lateral])), float(np.median(q[:, 2])))
         columns: dict[int, list[int]] = {}
         for d, (y, _) in sorted(where.items(), key=lambda kv: kv[1]):
             key = next((k for k in columns if abs(where[k][0] - y) < 0.05), d)

@@ -68,3 +68,22 @@ def test_the_other_presets_keep_the_world_frame():
     for name, p in PRESETS.items():
         if name != "scannet":
             assert p.frame_tilt_deg == (0.0, 0.0) and p.object_tilt_deg == (0.0, 0.0) and p.merge_fronts_prob == 0
+
+
+def test_drawers_side_by_side_are_two_columns_whichever_way_the_object_frame_faces(tmp_path, small):
+    """A third-party dresser (2 columns of 3 drawers) and TV stand (2 drawers side by side) whose fronts face
+    their object's y axis, not x as scenes/' do: each column is merged into its lowest drawer, and drawers
+    side by side stay apart (by the object's y the whole dresser was one column, one label over 6 fronts)."""
+    import thirdparty
+    from thirdparty.scannable import scene_of
+
+    for built in thirdparty.build_corpus(tmp_path, ["dresser_six", "tv_stand"]):
+        scene, _ = scene_of(built)
+        sc = scan_scene(scene, params_for_preset("scannet", merge_fronts_prob=1.0, **small), seed=0)
+        listed = {p["id"] for o in sc.labels["objects"] for p in o["parts"] if p["label"] == "drawer"}
+        (o,) = scene.objects
+        drawers = [p for p in o.parts if p.label == "drawer"]
+        centre = {p.id: np.median(sc.points[sc.part_id == p.id], axis=0) for p in drawers if p.id in listed}
+        assert len(listed) == 2, (built.spec.name, listed)                # one per column
+        a, b = centre.values()
+        assert abs(a[0] - b[0]) + abs(a[1] - b[1]) > 0.3                  # side by side, not one above the other
