@@ -166,24 +166,31 @@ def in_truth_frame(rec, T_scan_world: np.ndarray, object_id: int) -> list:
 
 
 def split_fronts_matched(truth, joints: tuple, obj) -> tuple:
-    """``joints`` (estimated, of ``obj``, in the truth's frame) with the child ids of split fronts set to the
-    true part they fitted: recon gives the pieces of a front labelled as one part (a segmentation's merged
+    """``joints`` (estimated, of ``obj``, in the truth's frame) with the child ids of split drawer fronts set to
+    the true drawer they fitted: recon gives the pieces of a front labelled as one part (a segmentation's merged
     drawer column, :mod:`recon.front_split`) new ids above every id in the scan, so matching by child id alone
-    calls them missing. A movable joint whose child id is no true part's takes the id of the true front
+    calls them missing. A prismatic joint whose child id is no true part's takes the id of a true drawer
     (``truth``, a :class:`recon.metrics.TruthObject`) left without an estimated joint when its child's box
-    centre lies in the middle half of that front's largest box (a piece still two fronts wide, centred
-    between them, fits none); every other joint is unchanged."""
+    centre lies within a third of that drawer's extent of its centre, both vertically and across the drawer's
+    pull (its depth is not compared: recon completes a drawer box behind a seen front). A piece still two
+    fronts wide, centred between them, fits neither; every other joint is unchanged."""
     true_ids = {p.id for p in truth.parts}
-    free = {j.child_part_id for j in truth.joints if j.parent_part_id is not None} - {j.child_part_id for j in joints}
+    axis_of = {j.child_part_id: np.asarray(j.axis, float) for j in truth.joints if j.type.value == "prismatic"}
+    free = sorted(set(axis_of) - {j.child_part_id for j in joints})
     out = []
     for j in joints:
-        if j.child_part_id not in true_ids and j.type.value != "fixed":
+        if j.child_part_id not in true_ids and j.type.value == "prismatic":
             c = obj.part(j.child_part_id).primitive.T_world_part[:3, 3]
-            for pid in sorted(free):
-                box = max(truth.part(pid).primitives, key=lambda q: float(np.prod(q.size)))
-                if np.all(np.abs(box.to_part(c[None])[0]) <= box.size / 4):
+            for pid in free:
+                across = np.cross([0.0, 0.0, 1.0], axis_of[pid])
+                if np.linalg.norm(across) < 1e-6:
+                    continue
+                dirs = (np.array([0.0, 0.0, 1.0]), across / np.linalg.norm(across))
+                corners = np.concatenate([q.corners() for q in truth.part(pid).primitives])
+                mid = (corners.max(axis=0) + corners.min(axis=0)) / 2
+                if all(abs((c - mid) @ d) <= np.ptp(corners @ d) / 3 for d in dirs):
                     j = replace(j, child_part_id=pid)
-                    free.discard(pid)
+                    free.remove(pid)
                     break
         out.append(j)
     return tuple(out)

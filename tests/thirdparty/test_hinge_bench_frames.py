@@ -57,15 +57,16 @@ def _drawer(child: int, name: str) -> JointEstimate:
 
 
 def test_the_pieces_of_a_split_front_take_the_ids_of_the_fronts_they_fitted_and_a_two_wide_piece_none():
-    """Three drawers 40 x 20 cm in one column, 14 and 16 merged into 12's label: recon's pieces 30 (on 14)
-    and 31 (on 16) are scored as 14 and 16. A piece centred between two fronts side by side (32, between 16
-    and its neighbour 18) fits neither and stays unmatched (missing), as does a piece beside every front."""
+    """Three drawers 40 x 20 cm in one column, 14 and 16 merged into 12's label: recon's pieces 30 (on 14,
+    its box 15 cm deeper: a completed drawer box) and 31 (on 16) are scored as 14 and 16. A piece centred
+    between two fronts side by side (32, between 16 and its neighbour 18) fits neither and stays unmatched
+    (missing), as does a piece beside every front."""
     fronts = {12: (0.0, 0.0, 0.2), 14: (0.0, 0.0, 0.42), 16: (0.0, 0.0, 0.64), 18: (0.4, 0.0, 0.64)}
     parts = [SimpleNamespace(id=11, label="body", primitives=(_box((0.2, 0.1, 0.4), (0.8, 0.2, 0.8)),))]
     parts += [SimpleNamespace(id=i, label="drawer", primitives=(_box(c, (0.4, 0.02, 0.2)),)) for i, c in fronts.items()]
     truth = SimpleNamespace(parts=parts, joints=[_drawer(i, f"d{i}") for i in fronts],
                             part=lambda i: next(p for p in parts if p.id == i))
-    est_centres = {12: (0.01, 0.0, 0.2), 30: (0.02, 0.0, 0.43), 31: (-0.01, 0.0, 0.63), 32: (0.2, 0.0, 0.64),
+    est_centres = {12: (0.01, 0.0, 0.2), 30: (0.02, 0.15, 0.43), 31: (-0.01, 0.0, 0.63), 32: (0.2, 0.0, 0.64),
                    33: (1.5, 0.0, 0.2)}
     pieces = {i: SimpleNamespace(primitive=_box(c, (0.4, 0.02, 0.2))) for i, c in est_centres.items()}
     obj = SimpleNamespace(part=lambda i: pieces[i])
