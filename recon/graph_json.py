@@ -14,7 +14,8 @@ Layout (format ``partscene.graph/1``; lengths in metres, angles in radians, worl
                               "uncertainty": {"axis_deg", "origin_m", "upper", "samples", "method",
                                               "side_undecided"}}],
                   "contacts": [{"parent_part_id", "child_part_id", "score", "align", "dist",
-                                "parent_plane", "child_plane"}]}],
+                                "parent_plane", "child_plane"}],
+                  "scored_contacts": [{"part_ids": [a, b], "score"}]}],
      "supports": [[object id, supporter id | null]], "proximal": [[a, b]],
      "walls": [{"name": "wall0", "size": [thickness, length, height], "T_world_wall": 4x4, "n_points"}],
      "floor": {"height_m", "tilt_deg", "normal", "n_points"}, "T_world_scan": 4x4,
@@ -32,7 +33,10 @@ panels; empty = the fitted primitive alone). A root joint has ``parent_part_id``
 (recon/joint_uncertainty.py) gives the RMS spread of its axis (deg), of its axis position perpendicular to
 the axis (m) and of its upper limit over ``samples`` resamplings, and ``side_undecided`` (true: a handleless
 door whose hinge side the scan does not decide, hinged at one edge with the other as likely; false for
-drawers); absent on fixed joints.
+drawers); absent on fixed joints. ``contacts`` are the Eq. 1 contacts; ``scored_contacts`` the object's
+contact graph as scored for the kinematic mAP (:func:`recon.part_tree.contact_scores`: undirected, the Eq. 1
+contacts weighted by the templates' priors, the part tree's edges and the designed neighbours Eq. 1
+missed); reading the file back recomputes them.
 """
 
 from __future__ import annotations
@@ -48,6 +52,7 @@ from recon.errors import ScanError
 from recon.leveling import Floor
 from recon.model import (ContactEdge, JointEstimate, JointUncertainty, ObjectReconstruction, PartFit,
                          Reconstruction, SceneGraph)
+from recon.part_tree import contact_scores
 from recon.primitive import Primitive, SurfacePlane
 from recon.walls import Wall
 
@@ -91,6 +96,8 @@ def graph_dict(rec: Reconstruction) -> dict:
                 **({} if j.uncertainty is None else {"uncertainty": j.uncertainty.as_dict()}),
             } for j in o.joints],
             "contacts": [dataclasses.asdict(e) for e in o.contacts],
+            "scored_contacts": [{"part_ids": [a, b], "score": float(v)}
+                                for (a, b), v in sorted(contact_scores(o, rec.config.tree).items())],
         })
     return {
         "format": FORMAT, "seed": rec.seed, "config": rec.config.flat(),

@@ -89,6 +89,9 @@ def test_graph_json_round_trip(tmp_path, kitchen_rec):
     doc = json.loads(paths["graph.json"].read_text())
     part = doc["objects"][0]["parts"][0]
     assert {"part_id", "label", "link", "type", "size", "T_world_part", "surface_planes"} <= part.keys()
+    for o, written in zip(kitchen_rec.objects, doc["objects"]):    # the contact graph the kinematic mAP scores
+        scored = {tuple(e["part_ids"]): e["score"] for e in written["scored_contacts"]}
+        assert scored == contact_scores(o, kitchen_rec.config.tree) and scored
 
 
 def test_scene_urdf_loads_everywhere_and_matches_the_graph(tmp_path, kitchen_rec):
