@@ -25,6 +25,7 @@ from recon.bounding import oriented_box
 from recon.config import CoverageConfig, FittingConfig
 from recon.coverage import coverage, coverage_problems
 from recon.depth_noise import mad_sigma, seen_face
+from recon.label_fragments import point_spacing
 from recon.primitive import Primitive, PrimitiveKind
 
 __all__ = ["FitScore", "candidate_primitives", "normals_frame", "score_primitive", "denoised_box", "dominant_yaw", "fit_part",
@@ -240,7 +241,9 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
     oriented normals show it was seen from one side only (a door, a drawer front; not a chair back) —
     is measured from the points of its face (normals along its thin axis): its in-plane edges where
     their density falls to ``front_edge_density`` of the face's (label bleed and the edges' own noise
-    lie beyond), its seen face at their median, and a ``front_thickness`` board behind it. A front on
+    lie beyond; moved in from the outermost points by at most ``front_edge_max_trim`` or, for a front by
+    its label (``front``), ``front_edge_trim_spacings`` times the face points' spacing, whichever is more: a
+    coarse scan blurs an edge farther), its seen face at their median, and a ``front_thickness`` board behind it. A front on
     a clean scan thinner than that board (only its face was seen) gets the board behind its face.
 
     A slab (a board, a table top) seen on one face and its edges gets its thickness from its edges
@@ -316,6 +319,9 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
     if is_front:
         # a front (door, drawer front) seen from one side: its in-plane edges at the half-density of its
         # face, its seen face at the median of that face's points, the board's thickness behind it
+        trim = config.front_edge_max_trim
+        if front:
+            trim = max(trim, config.front_edge_trim_spacings * point_spacing(q[face_mask]))
         for a in range(3):
             if a != k:
                 edges = _half_density_edges(q[face_mask, a], config)
@@ -323,8 +329,8 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
                     # scattered points past the face (flying pixels, bleed from far) are no extent to trim from
                     dense = _half_density_edges(q[face_mask, a], config, config.front_edge_tail_density)
                     start = (max(lo[a], dense[0]), min(hi[a], dense[1])) if dense else (lo[a], hi[a])
-                    lo[a] = max(lo[a], min(edges[0], start[0] + config.front_edge_max_trim))
-                    hi[a] = min(hi[a], max(edges[1], start[1] - config.front_edge_max_trim))
+                    lo[a] = max(lo[a], min(edges[0], start[0] + trim))
+                    hi[a] = min(hi[a], max(edges[1], start[1] - trim))
         _board_behind(lo, hi, k, float(np.median(q[face_mask, k])), side, config.front_thickness)
     else:
         slab = _slab_box(prim, q, k, bool(f % 2), config)
