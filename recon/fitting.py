@@ -243,8 +243,9 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
     their density falls to ``front_edge_density`` of the face's (label bleed and the edges' own noise
     lie beyond; moved in from the outermost points by at most ``front_edge_max_trim`` or, for a front by
     its label (``front``), ``front_edge_trim_spacings`` times the face points' spacing, whichever is more: a
-    coarse scan blurs an edge farther), its seen face at their median, and a ``front_thickness`` board behind it. A front on
-    a clean scan thinner than that board (only its face was seen) gets the board behind its face.
+    coarse scan blurs an edge farther), its seen face at their median, and a ``front_thickness`` board
+    behind it. A front on a clean scan thinner than that board (only its face was seen) gets the board
+    behind its face.
 
     A slab (a board, a table top) seen on one face and its edges gets its thickness from its edges
     (:func:`_slab_box`); a box seen on two or three faces has each seen face pulled in like the best one.
