@@ -136,7 +136,7 @@ class FittingConfig:
     most this many times the spacing of the face's points (their median nearest-neighbour distance), when that
     is more: a scanner blurs an edge over a few of its samples (voxels, a segmentation's boundary bleed), so a
     coarse scan's edge lies farther in from its outermost points. Other panels keep ``front_edge_max_trim``: a
-    headboard's lower edge is hidden by its mattress (with it: realistic bed mAP 0.97 -> 0.94)."""
+    headboard's lower edge is hidden by its mattress (docs/decisions.md, "A door's or drawer's edge trim")."""
     front_edge_tail_density: float = 0.1
     """... and from the extent where that density first reaches this fraction of the face's: points
     scattered farther out (flying pixels, label bleed from far) would spend the trim before the edge."""

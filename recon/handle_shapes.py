@@ -182,9 +182,8 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
         (mu, length), (mv, width) = _extent(q @ u, pct), _extent(q @ v, pct)
     mv = _middle_across(q @ v, v, config)
     knob = length < config.handle_knob_max_length
-    if knob:                                           # a knob has no along: its middle as across a bar
-        mu = _middle_across(q @ u, u, config)
     if knob:
+        mu = _middle_across(q @ u, u, config)          # a knob has no along: its middle as across a bar
         across = float(np.clip((length + width) / 2.0, fitting.min_thickness, config.handle_knob_max_diameter))
         depth = min(across, config.handle_max_thickness)
     else:
