@@ -31,6 +31,7 @@ import numpy as np
 from planners.task import SEGMENT_NAMES, parse_tasks
 from scenes.description import file_stem, read_scene_floor
 from scenes.outcome import Outcome
+from simcheck.certification import SIDE_CAVEAT
 from simcheck.perturbations import Perturbation, front_normal, in_front_plane, sample_perturbation
 from simcheck.perturbed_scene import base_error_inverse, write_perturbed_scene
 from simcheck.robust_correction import guarded_plan
@@ -229,7 +230,7 @@ def certify_robustly(certify, scene, tasks, *, robust: int, min_success: float, 
             reason = (f"robust: {block['successes']} of {block['samples']} sampled worlds opened it; with "
                       f"{CONFIDENCE:.0%} confidence at least {block['success_lower_bound']:.3f} of such worlds do "
                       f"({'>=' if block['success_lower_bound'] >= min_success else '<'} {min_success:g}); "
-                      f"nominal: {tc.status.value} -- {tc.reason}")
+                      f"nominal: {tc.status.value} -- {tc.reason.removesuffix(f'; {SIDE_CAVEAT}')}")
             if block["failures"]:
                 f = block["failures"][0]
                 reason += f"; first failing sample {f['sample']}: {f['reason']}"

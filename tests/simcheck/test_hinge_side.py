@@ -86,6 +86,9 @@ def test_a_door_hinged_at_its_other_edge_does_not_open_so_it_is_not_certified_ro
     failed = {f["sample"] for f in block["failures"]}
     assert {i for i, s in enumerate(sides) if s == "other"} <= failed, block["failures"]
     assert cert[DOOR].status.value == "failed"
+    # its worlds sample both sides: the plain certificate's caveat is not repeated from the nominal run
+    from simcheck.certification import SIDE_CAVEAT
+    assert "nominal: certified" in cert[DOOR].reason and SIDE_CAVEAT not in cert[DOOR].reason, cert[DOOR].reason
 
 
 def test_a_plain_certificate_of_a_side_undecided_door_says_it_holds_for_the_estimated_side_only(tmp_path):
