@@ -8,7 +8,9 @@
   (:data:`MAX_SIZE`, generous bounds from furniture ranges: a kitchen run of cabinets, a conference
   table, a bunk bed). A wrong unit scales everything by 10 or more (centimetres 100, inches 39.4);
   the margin keeps what a real segmentation lumps with an object (a microwave's stand, a cabinet's
-  plinth) from looking like one.
+  plinth) from looking like one. Nor may every object of a category we know be smaller than
+  :data:`MIN_SIZE` over the margin (a scan scaled down by 10 or more: kilometres, decimetres,
+  a room normalised into a unit box); one small object among real-sized ones is a fragment, not a unit.
 
 The messages name the scan, the evidence and the fix; the pipeline raises them as
 :class:`recon.errors.ScanError` (``recon build`` exits 2).
@@ -22,7 +24,7 @@ from recon.config import LevelingConfig
 from recon.leveling import Floor
 from recon.scan import Scan
 
-__all__ = ["MAX_SIZE", "UNIT_ERROR_MARGIN", "frame_problem", "scale_problems"]
+__all__ = ["MAX_SIZE", "MIN_SIZE", "UNIT_ERROR_MARGIN", "frame_problem", "scale_problems"]
 
 MAX_SIZE = {
     "cabinet": (6.0, 2.8), "wardrobe": (4.5, 2.8), "shelf": (6.0, 3.0), "refrigerator": (2.0, 2.4),
@@ -32,6 +34,12 @@ MAX_SIZE = {
 """{category: (longest side on the floor, height)}, metres: larger than any real object of the category."""
 DEFAULT_MAX_SIZE = (8.0, 3.5)
 """... of a category not in :data:`MAX_SIZE` (a room is rarely taller)."""
+MIN_SIZE = {
+    "cabinet": 0.2, "wardrobe": 0.8, "shelf": 0.2, "refrigerator": 0.4, "microwave": 0.3, "oven": 0.4,
+    "dishwasher": 0.4, "table": 0.4, "desk": 0.6, "chair": 0.4, "sofa": 0.8, "bed": 1.0,
+}
+"""{category: largest dimension (longest side on the floor or height), metres}: shorter than any real object
+of the category (a wall-hung spice cabinet, a mini fridge, a side table, a stool, a crib)."""
 UNIT_ERROR_MARGIN = 2.0
 """An object is implausibly scaled beyond this multiple of :data:`MAX_SIZE` (a unit error is at least 10)."""
 _PERCENTILES = (2.0, 98.0)
@@ -78,8 +86,9 @@ def _extents(points: np.ndarray) -> tuple[float, float]:
 
 def scale_problems(scan: Scan, source: str) -> str | None:
     """Why the objects of ``scan`` (floor frame, z up) cannot be in metres, or None: the objects
-    larger than any of their category, named with their sizes."""
-    big = []
+    larger than any of their category, named with their sizes, or every object of a known category
+    smaller than any real one."""
+    big, small, known = [], [], 0
     for o in scan.objects:
         if not o.parts:
             continue
@@ -88,8 +97,20 @@ def scale_problems(scan: Scan, source: str) -> str | None:
         if side > max_side or height > max_height:
             big.append(f"object {o.id} ({o.category}) is {height:.2f} m tall and {side:.2f} m long (no {o.category} "
                        f"is taller than {max_height:g} m or longer than {max_side:g} m)")
-    if not big:
-        return None
-    return (f"{source}: implausibly scaled: {len(big)} of {len(scan.objects)} objects are larger than any of their "
-            f"category: {'; '.join(big[:3])}{'; ...' if len(big) > 3 else ''}. The scan must be in metres: a scan "
-            "in centimetres or scaled by 10 looks like this; scale its coordinates to metres")
+        if o.category in MIN_SIZE:
+            known += 1
+            least = MIN_SIZE[o.category] / UNIT_ERROR_MARGIN
+            if max(side, height) < least:
+                small.append(f"object {o.id} ({o.category}) is {height:.3f} m tall and {side:.3f} m long (no "
+                             f"{o.category} is under {least:g} m in every direction)")
+    fix = "The scan must be in metres: scale its coordinates to metres"
+    if big:
+        return (f"{source}: implausibly scaled: {len(big)} of {len(scan.objects)} objects are larger than any of "
+                f"their category: {'; '.join(big[:3])}{'; ...' if len(big) > 3 else ''}. {fix} (a scan in "
+                "centimetres or scaled by 10 looks like this)")
+    if small and len(small) == known:
+        return (f"{source}: implausibly scaled: every object is smaller than any real one of its category: "
+                f"{'; '.join(small[:3])}"
+                f"{'; ...' if len(small) > 3 else ''}. {fix} (a scan scaled down by 10 or more, or normalised into a "
+                "unit box, looks like this)")
+    return None

@@ -103,6 +103,8 @@ def _read_ply(path: Path) -> dict[str, np.ndarray]:
         raise ScanError(f"{path}: not a readable PLY point cloud ({type(exc).__name__}: {exc})") from exc
     if "vertex" not in raw:
         raise ScanError(f"{path}: PLY has no 'vertex' element")
+    if "data" not in raw["vertex"]:  # trimesh keeps no data for an element of 0 vertices
+        raise ScanError(f"{path}: the scan has no points (the PLY header declares 0 vertices)")
     data = raw["vertex"]["data"]
     if isinstance(data, dict):  # ascii: {name: (N, 1)}
         out = {k: np.asarray(v).reshape(-1) for k, v in data.items()}
@@ -151,6 +153,8 @@ def _read_labels(path: Path) -> list[dict]:
         doc = json.loads(Path(path).read_text())
     except FileNotFoundError:
         raise ScanError(f"{path}: labels file not found") from None
+    except IsADirectoryError:
+        raise ScanError(f"{path}: is a folder; give the labels.json file inside it") from None
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise ScanError(f"{path}: labels file is not valid JSON ({exc})") from exc
     if not isinstance(doc, dict) or not isinstance(doc.get("objects"), list):

@@ -105,7 +105,19 @@ def _labels_in_out(tmp):
     return _write_ply(tmp / "scan.ply", _scan_props()), _write_labels(tmp / "out" / "graph.json", LABELS)
 
 
+def _empty_ply(tmp):
+    return (_write_ply(tmp / "scan.ply", {k: v[:0] for k, v in _scan_props().items()}),
+            _write_labels(tmp / "labels.json", LABELS))
+
+
+def _labels_folder(tmp):
+    (tmp / "labels.json").mkdir()
+    return _write_ply(tmp / "scan.ply", _scan_props()), tmp / "labels.json"
+
+
 RECON_CASES = {
+    "ply-without-points": (_empty_ply, r"scan.ply: the scan has no points \(the PLY header declares 0 vertices\)"),
+    "labels-path-is-a-folder": (_labels_folder, r"labels.json: is a folder; give the labels.json file inside it"),
     "labels-file-is-out-graph-json": (_labels_in_out, r"out/graph.json: this input \(labels\) lies inside --out"),
     "all-points-identical": (_identical_points, r"scan.ply: all \d+ points lie within"),
     "two-body-parts": (_two_bodies, r"labels.json: object 1 has 2 'body' parts \(101, 102\)"),

@@ -137,6 +137,14 @@ def test_a_scan_ten_times_too_large_is_refused(synth):
         reconstruct_scan(_scan(synth, T, floor=False, wall=False))
 
 
+def test_a_scan_ten_times_too_small_is_refused(synth):
+    T = np.diag([0.1, 0.1, 0.1, 1.0])
+    with pytest.raises(ScanError) as exc:
+        reconstruct_scan(_scan(synth, T, floor=False, wall=False))
+    msg = str(exc.value)
+    assert "implausibly scaled" in msg and "smaller than any real one" in msg and "object 1 (cabinet)" in msg
+
+
 def test_level_floor_never_turns_a_nearly_level_scan_over(synth):
     """The old failure: a sparse floor missing from the plane candidates -> "178.4 deg off"."""
     T = _tilted(2.0, 0.03, axis=(1.0, -0.4, 0.0))
