@@ -296,8 +296,9 @@ class TreeConfig:
     under a body instead of its drawer) has its contact score multiplied by this (also in the mAP
     ranking of :func:`recon.part_tree.contact_scores`)."""
     near_parent_distance: float = 0.1
-    """A part with no Eq. 1 contact to a parent its template expects is hung from the nearest such
-    part closer than this (m) (noisy scans break contacts by a few centimetres)."""
+    """A part with no Eq. 1 contact, or only a weak one, to a parent its template expects is hung from the
+    nearest such part closer than this (m) (noisy scans break contacts by a few centimetres; a fit stretched by
+    label fragments touches its parent over a sliver)."""
     near_parent_weight: float = 0.3
     """Edge weight of that attachment at zero distance (below the contact scores of real contacts)."""
     fallback_edge_weight: float = 1e-6

@@ -82,10 +82,11 @@ def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
               distances: dict[tuple[int, int], float] | None = None) -> PartTree:
     """Solve Eq. 4 for one object. ``labels``/``volumes`` : {part_id: label / m^3}.
 
-    ``distances`` {(a, b): metres between parts}: a part without an Eq. 1 contact to a parent its
-    template expects gets an edge from the nearest such part — weighted ``near_parent_weight``
-    (fading to 0 at ``near_parent_distance``) when that part is close, else a fallback weight — so a
-    handle hangs from the nearest drawer or door rather than the root or a foreign part.
+    ``distances`` {(a, b): metres between parts}: a part gets an edge from the nearest part its template
+    expects as parent — weighted ``near_parent_weight`` (fading to 0 at ``near_parent_distance``) when that
+    part is close, else a fallback weight, or its Eq. 1 contact's weight when higher (a weak contact never
+    counts less than none) — so a handle hangs from the nearest drawer or door rather than the root or a
+    foreign part.
     """
     root = choose_root(labels, volumes)
     g = nx.DiGraph()
@@ -105,17 +106,18 @@ def part_tree(category: str, labels: dict[int, str], volumes: dict[int, float],
         tpl = template_for(category, labels[v])
         if v != root and distances and tpl is not None:
             # the root's fallback edge is no contact: the root may still be the near parent
-            near = [(distances.get((u, v), np.inf), u) for u in labels
-                    if u != v and labels[u] in tpl.parents and (u, v) not in by_pair]
+            near = [(distances.get((u, v), np.inf), u) for u in labels if u != v and labels[u] in tpl.parents]
             if near:
                 d, u = min(near)
+                w = g.edges[u, v]["weight"] if g.has_edge(u, v) else 0.0
                 if d < config.near_parent_distance:
-                    # the template's parent is right there but Eq. 1 missed the contact (noise):
-                    # prefer it to a foreign parent, never to a real contact with an expected parent
-                    w = config.near_parent_weight * (1.0 - d / config.near_parent_distance)
+                    # the template's parent is right there but Eq. 1 missed the contact or found a weak one
+                    # (noise, a fit stretched by stray points): prefer it to a foreign parent, never to a
+                    # stronger real contact with an expected parent; a weak contact never counts less than none
+                    near_w = config.near_parent_weight * (1.0 - d / config.near_parent_distance)
+                    g.add_edge(u, v, weight=max(w, near_w, 2 * config.fallback_edge_weight))
+                elif np.isfinite(d) and (u, v) not in by_pair:
                     g.add_edge(u, v, weight=max(w, 2 * config.fallback_edge_weight))
-                elif np.isfinite(d):
-                    g.add_edge(u, v, weight=2 * config.fallback_edge_weight)
     if len(labels) == 1:
         return PartTree(root, {}, {}, ())
     arb = nx.maximum_spanning_arborescence(g, attr="weight", preserve_attrs=True)
@@ -141,7 +143,8 @@ def contact_scores(obj: ObjectReconstruction, config: TreeConfig, weighted: bool
     near-parent weight of Eq. 4 at the parts' distance (``near_parent_weight`` fading to 0 at
     ``near_parent_distance``, the weight :func:`part_tree` gave it; distance from the child's corners
     and centre to the parent's surface, final primitives), at least ``UNCONTACTED_TREE_EDGE_SCORE``,
-    which any other such edge scores. A pair of designed neighbours (:func:`recon.templates.designed_neighbours`:
+    which any other such edge scores; a tree edge to an expected parent with a weaker Eq. 1 contact scores that
+    near-parent weight too (as in Eq. 4, a weak contact never counts less than none). A pair of designed neighbours (:func:`recon.templates.designed_neighbours`:
     a bed's mattress and headboard, both children of its frame, so never a tree edge) that Eq. 1 missed
     scores the same near-parent weight at their distance (the nearer of either's corners and centre to the
     other's surface): depth noise, label bleed at their boundary and 3.5 cm voxels leave a ScanNet-style
@@ -167,13 +170,13 @@ def contact_scores(obj: ObjectReconstruction, config: TreeConfig, weighted: bool
 
     for p, c in obj.tree_edges():
         key = (min(p, c), max(p, c))
-        if key in out:
-            continue
-        score = UNCONTACTED_TREE_EDGE_SCORE
         tpl = template_for(obj.category, labels.get(c, ""))
-        if tpl is not None and labels.get(p) in tpl.parents and p in prims and c in prims:
-            score = max(score, near(p, c))
-        out[key] = score
+        expected = tpl is not None and labels.get(p) in tpl.parents and p in prims and c in prims
+        if key in out:
+            if expected:            # a weak contact with an expected parent counts no less than none (Eq. 4)
+                out[key] = max(out[key], near(p, c))
+            continue
+        out[key] = max(UNCONTACTED_TREE_EDGE_SCORE, near(p, c)) if expected else UNCONTACTED_TREE_EDGE_SCORE
     ids = sorted(i for i in prims if i in labels)
     for k, a in enumerate(ids):
         for b in ids[k + 1:]:

@@ -109,6 +109,8 @@ class ObjectState:
     prims : {part_id: Primitive}, world frame: the current primitive of each part
     contacts : every Eq. 1 contact edge; tree : the Eq. 4 part tree
     handles : {part_id: HandleShapes} of the handles given a bar / knob
+    T_moved : (4, 4) the rigid motion (world) the parts made after they were fitted to their points (set upright
+        and resting on their support: :func:`place_on_supports`); the scan points moved by it lie on the parts
     """
 
     source: ObjectPoints
@@ -120,6 +122,15 @@ class ObjectState:
     contacts: tuple[ContactEdge, ...] = ()
     tree: PartTree | None = None
     handles: dict[int, HandleShapes] = field(default_factory=dict)
+    T_moved: np.ndarray = field(default_factory=lambda: np.eye(4))
+
+    def moved_parts(self) -> tuple:
+        """The object's parts' scan points and normals moved by ``T_moved`` (:class:`recon.scan.PartPoints`)."""
+        if np.allclose(self.T_moved, np.eye(4)):
+            return self.source.parts
+        R, t = self.T_moved[:3, :3], self.T_moved[:3, 3]
+        return tuple(replace(p, points=p.points @ R.T + t, normals=None if p.normals is None else p.normals @ R.T)
+                     for p in self.source.parts)
 
     @property
     def id(self) -> int:
@@ -539,6 +550,7 @@ def place_on_supports(states: list[ObjectState], run: _Run) -> dict[int, tuple[i
             M = np.eye(4)
             M[:3, :3], M[:3, 3] = R, pivot - R @ pivot
             s.prims = {i: p.transformed(M) for i, p in s.prims.items()}
+            s.T_moved = M @ s.T_moved
     by_id = {s.id: s for s in states}
     support = support_relations({i: list(s.prims.values()) for i, s in by_id.items()}, config)
     for i in sorted(by_id, key=lambda i: (support[i][0] is not None, i)):
@@ -549,7 +561,10 @@ def place_on_supports(states: list[ObjectState], run: _Run) -> dict[int, tuple[i
                      "left where it was scanned")
             continue
         top = 0.0 if sup is None else max(float(p.corners()[:, 2].max()) for p in by_id[sup].prims.values())
-        state.prims = resting_on(state.prims, top, state.tree.root, config.base_bottom_tolerance)
+        moved = []
+        state.prims = resting_on(state.prims, top, state.tree.root, config.base_bottom_tolerance, moved)
+        for M in moved:
+            state.T_moved = M @ state.T_moved
     return support
 
 
@@ -561,6 +576,11 @@ class _Obstacles:
     def __init__(self, scan: Scan, states: list[ObjectState], run: _Run):
         rng = np.random.default_rng(run.seed)
         self.points, self.part_id = scan.points, scan.part_id
+        for s in states:            # each object's points where its parts now are (set upright, resting)
+            if not np.allclose(s.T_moved, np.eye(4)):
+                own = scan.object_id == s.id
+                self.points = self.points.copy() if self.points is scan.points else self.points
+                self.points[own] = self.points[own] @ s.T_moved[:3, :3].T + s.T_moved[:3, 3]
         self.shells = {s.id: np.concatenate([_surface_samples(p, run.config.joints.obstacle_spacing, rng)
                                              for p in s.prims.values()]) for s in states}
 
@@ -580,10 +600,11 @@ def estimate_object_joints(state: ObjectState, obstacles: _Obstacles, supported_
     and its frame (bottom centre, x = its front): the finished :class:`ObjectReconstruction`."""
     config, labels, prims, tree = run.config, state.labels, state.prims, state.tree
     names = {i: joint_name(state.category, state.id, labels[i], i) for i in labels}
+    parts_seen = state.moved_parts()         # the scan points where the parts now are
     joints = estimate_joints(state.category, names, labels, prims, tree, obstacles.for_object(state.id),
                              config.joints, config.contacts, config.fitting, run.warn,
-                             {p.part_id: (p.points, p.normals) for p in state.source.parts})
-    joints = with_joint_uncertainty(joints, state.source.parts, prims, obstacles.for_object(state.id), config, run.seed)
+                             {p.part_id: (p.points, p.normals) for p in parts_seen})
+    joints = with_joint_uncertainty(joints, parts_seen, prims, obstacles.for_object(state.id), config, run.seed)
     shapes = (template_shapes(joints, prims, labels, config.shapes, config.joints.drawer_back_clearance)
               if config.shapes.template_shapes else {})
     shapes.update(posed_handle_shapes(state.handles, prims))

@@ -97,13 +97,15 @@ def object_frame(prims: list[Primitive], front: np.ndarray | None) -> tuple[np.n
 
 
 def resting_on(prims: dict[int, Primitive], top: float, base: int | None = None,
-               base_tolerance: float = 0.0) -> dict[int, Primitive]:
+               base_tolerance: float = 0.0, moved: list | None = None) -> dict[int, Primitive]:
     """An object's parts ``prims`` (world frame) resting at height ``top`` (m): parts sunk below it
     (noise below the floor / a top surface) are cut there instead of lifting the whole object (which
     would move its fitted drawers and doors). An object above ``top`` whose ``base`` part (its body)
     reaches its lowest point (within ``base_tolerance`` m) and stands upright has that part extended
     down to ``top`` (it stands on something the scan does not show: feet, a plinth, its hidden bottom
-    edge), for the same reason; otherwise the object moves vertically so its bottom is ``top``."""
+    edge), for the same reason; otherwise the object moves vertically so its bottom is ``top``. ``moved``
+    (a list), when given, gets that whole-object motion appended as a (4, 4) transform (none when no part moved
+    or parts were only cut or extended)."""
     bottom = min(float(p.corners()[:, 2].min()) for p in prims.values())
     if bottom < top:
         prims = {k: _bottom_at(p, top) if p.corners()[:, 2].min() < top else p for k, p in prims.items()}
@@ -116,6 +118,8 @@ def resting_on(prims: dict[int, Primitive], top: float, base: int | None = None,
         M = np.eye(4)
         M[2, 3] = top - bottom
         prims = {k: p.transformed(M) for k, p in prims.items()}
+        if moved is not None:
+            moved.append(M)
     return prims
 
 
