@@ -49,7 +49,8 @@ class SceneJoint:
 
 def _read(path: str | Path) -> SceneModel:
     if not Path(path).is_file():
-        raise SceneLoadError(f"scene URDF {path} does not exist")
+        what = "is a folder, not a URDF file" if Path(path).is_dir() else "does not exist"
+        raise SceneLoadError(f"scene URDF {path} {what}")
     try:
         return read_scene_urdf(path)
     except SceneURDFError as exc:

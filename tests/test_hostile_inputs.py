@@ -162,7 +162,7 @@ def test_a_part_collapsed_to_a_point_is_a_warning_and_a_skipped_part():
 
 # --- scene URDF cases: read_urdf / the planner raise an InputError naming the link or joint ------------
 
-def _urdf(tmp: Path, link="drawer", joint="drawer_joint", upper=0.4, mass="1", ixx="0.1") -> Path:
+def _urdf(tmp: Path, link="drawer", joint="drawer_joint", upper=0.4, mass="1", ixx="0.1", velocity="1") -> Path:
     box = '<collision><geometry><box size="0.4 0.5 0.2"/></geometry></collision>'
     inertial = '<inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>'
     moving = (f'<inertial><mass value="{mass}"/><inertia ixx="{ixx}" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/>'
@@ -173,7 +173,7 @@ def _urdf(tmp: Path, link="drawer", joint="drawer_joint", upper=0.4, mass="1", i
   <link name="{link}">{moving}{box}</link>
   <joint name="body_joint" type="fixed"><parent link="world"/><child link="body"/></joint>
   <joint name="{joint}" type="prismatic"><parent link="body"/><child link="{link}"/>
-    <origin xyz="-0.3 0 0.5"/><axis xyz="-1 0 0"/><limit lower="0" upper="{upper}" effort="10" velocity="1"/></joint>
+    <origin xyz="-0.3 0 0.5"/><axis xyz="-1 0 0"/><limit lower="0" upper="{upper}" effort="10" velocity="{velocity}"/></joint>
 </robot>"""
     (tmp / "scene.urdf").write_text(text)
     return tmp / "scene.urdf"
@@ -220,6 +220,7 @@ SCENE_CASES = {
     "drawer-inertia-nan": (_read_drawer(ixx="nan"), r"link 'drawer' inertia: expected finite numbers"),
     "drawer-inertia-negative": (_read_drawer(ixx="-1"), r"link 'drawer' \(child of prismatic joint 'drawer_joint'\) "
                                 r"has an inertia that has principal moment -1 kg m\^2"),
+    "drawer-velocity-negative": (_read_drawer(velocity="-1"), r"joint 'drawer_joint' has limit effort 10 and velocity -1"),
     "drawer-lower-minus-1e6-m": (_huge_negative_drawer, r"joint 'drawer_joint': opening by -.* m is beyond"),
     "link-name-3000-chars": (_long_link, r"scene.urdf: link 'ddd.*has a name of 3000 characters \(at most 255\)"),
     "joint-name-2100-chars": (_long_joint, r"scene.urdf: joint 'jjj.*has a name of 2100 characters"),

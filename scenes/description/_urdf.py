@@ -142,6 +142,9 @@ def _joint(el, where: str) -> Joint:
     if y.limit is not None:
         vals = [0.0 if v is None else v for v in (y.limit.lower, y.limit.upper, y.limit.effort, y.limit.velocity)]
         limit = Limit(*(float(v) for v in _finite(vals, f"{at} limit")))
+        if min(limit.effort, limit.velocity) < 0:
+            raise DescriptionError(f"{at} has limit effort {limit.effort:g} and velocity {limit.velocity:g}: both "
+                                   "are magnitudes (N or N m; m/s or rad/s) and must be >= 0")
     if y.dynamics is not None:
         vals = [0.0 if v is None else float(v) for v in (y.dynamics.damping, y.dynamics.friction)]
         dynamics = Dynamics(*(float(v) for v in _finite(vals, f"{at} dynamics")))
