@@ -187,7 +187,7 @@ def _entry(path: Path, line: int, doc: dict, lines: dict) -> Entry:
             raise fail(field, f"expected a file path, got {value!r}")
         p = (base / value).resolve()
         if not p.is_file():
-            raise fail(field, f"file {p} does not exist")
+            raise fail(field, f"{p} is a folder, not a file" if p.is_dir() else f"file {p} does not exist")
         return p
 
     robust, min_success = doc.get("robust"), doc.get("min_success", 0.9)

@@ -131,6 +131,7 @@ def test_malformed_entry_exits_2_naming_line_and_field(kitchens, tmp_path, capsy
 @pytest.mark.parametrize("text,where", [
     ("- scene: {k}/k0/truth.urdf\n  tasks: all-movable\n  sede: 1\n", r":3: field 'sede': unknown field \(did you mean 'seed'\?\)"),
     ("- scene: {k}/k0/missing.urdf\n", ":1: field 'scene': file"),
+    ("- scene: {k}/k0\n", ":1: field 'scene': .*/k0 is a folder, not a file"),
     ("- scan: {k}/k0/truth.urdf\n  tasks: all-movable\n", ":1: field 'labels' is missing"),
     ("- scene: {k}/k0/truth.urdf\n  seed: -1\n", ":2: field 'seed'"),
     ("- scene: {k}/k0/truth.urdf\n  _fault: segfault\n", ":2: field '_fault': unknown field"),
