@@ -67,6 +67,11 @@ class PhysicsConfig:
             for a robot whose spec gives no joint stiffness (``SimRobot.joint_stiffness``; with one, the
             spring is the tool's Cartesian stiffness under that joint impedance at every step).
         grasp_damping: damping, N*s/m, of that spring.
+        grasp_stiffness_every: with a robot's joint stiffness, the tool's Cartesian stiffness is computed again
+            (and its stable cap applied) every this many physics steps of the grasp, from the first (5 = 32 Hz:
+            the arm's configuration moves ~0.015 rad at most in between; every step cost ~6 % of a
+            certification's CPU and moved no criterion by more than 1 %: docs/decisions.md, "The grasp
+            spring's stiffness at 32 Hz").
         grasp_max_turn: the grasp is lost when the handle has turned more than this in the fingers, rad
             (the grasp transmits no torque; 20 deg turns a bar out of flat pads). A round bar held across
             its axis rolls between the pads: its roll about its own axis is not counted, only the turn of
@@ -119,6 +124,7 @@ class PhysicsConfig:
     grasp_force_window: float = 0.05
     grasp_stiffness: float = 7000.0
     grasp_damping: float = 50.0
+    grasp_stiffness_every: int = 5
     grasp_max_turn: float = 0.3490658503988659
     grasp_roll_tolerance: float = 0.003
     grasp_roll_angle: float = 0.2617993877991494

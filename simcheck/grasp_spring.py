@@ -11,7 +11,7 @@ step integration of the spring stays stable (:func:`stable_stiffness`), and so i
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -34,6 +34,10 @@ class GraspSpring:
     p_local0 : (3,) the held point in the link's frame when the grasp was made, m (default: ``p_local``)
     force : the norm of the force holding the point took in the last step, before the cap, N
     slid : the force has reached the cap since the grasp was made
+    steps : the physics steps the spring has acted (its adapter counts them)
+
+    ``stiffness`` is replaced, never changed in place: :func:`spring_force` keeps the capped matrix of the
+    stiffness object it last saw.
     """
 
     body: int
@@ -47,10 +51,29 @@ class GraspSpring:
     p_local0: np.ndarray | None = None
     force: float = 0.0
     slid: bool = False
+    steps: int = 0
+    _capped: tuple = field(default=(None, None), init=False, repr=False, compare=False)  # (stiffness, capped)
 
     def __post_init__(self) -> None:
         if self.p_local0 is None:
             self.p_local0 = np.array(self.p_local, dtype=float)
+
+    def capped_stiffness(self) -> np.ndarray:
+        """(3, 3) N/m: ``stiffness`` as a matrix with its eigenvalues lowered to ``max_stiffness``; computed once
+        per stiffness object."""
+        of, K = self._capped
+        if of is self.stiffness:
+            return K
+        K = np.asarray(self.stiffness, dtype=float)
+        if K.ndim == 0:
+            K = float(K) * np.eye(3)
+        # else no eigenvalue is above it (Gershgorin; the rows' sums as numpy's sum(axis=1) adds them)
+        if max(abs(a) + abs(b) + abs(c) for a, b, c in K.tolist()) > self.max_stiffness:
+            w, V = eigh(K)
+            if w.max() > self.max_stiffness:
+                K = (V * np.minimum(w, self.max_stiffness)) @ V.T
+        self._capped = (self.stiffness, K)
+        return K
 
     @property
     def slide(self) -> float:
@@ -103,14 +126,7 @@ def spring_force(spring: GraspSpring, p_held: np.ndarray, v_held: np.ndarray, p_
     The force is ``K @ stretch + damping * relative velocity`` (``K``: ``spring.stiffness`` with its
     eigenvalues capped at ``spring.max_stiffness``, the damping at ``spring.max_damping``), capped at ``spring.cap``; when the spring force
     alone exceeds the cap, the held point slides toward the tool so that the spring stays at the cap."""
-    K = np.asarray(spring.stiffness, dtype=float)
-    if K.ndim == 0:
-        K = float(K) * np.eye(3)
-    # else no eigenvalue is above it (Gershgorin; the rows' sums as numpy's sum(axis=1) adds them)
-    if max(abs(a) + abs(b) + abs(c) for a, b, c in K.tolist()) > spring.max_stiffness:
-        w, V = eigh(K)
-        if w.max() > spring.max_stiffness:
-            K = (V * np.minimum(w, spring.max_stiffness)) @ V.T
+    K = spring.capped_stiffness()
     stretch = p_tool - p_held
     f_spring = K @ stretch
     f = f_spring + min(spring.damping, spring.max_damping) * (v_tool - v_held)

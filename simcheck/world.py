@@ -401,7 +401,8 @@ class World:
         that it rolls about it between the pads; :func:`simcheck.grasp.round_bar_axis`). ``stiffness``: N/m (an isotropic spring), or a
         mapping robot joint name -> joint stiffness (N*m/rad, N/m for a prismatic joint) of the arm's
         joint impedance: the spring is then the tool's Cartesian stiffness under it at the current
-        configuration, recomputed every step (:meth:`tool_stiffness`); joints not named are rigid.
+        configuration, recomputed every ``grasp_stiffness_every`` steps (:meth:`tool_stiffness`); joints not
+        named are rigid.
         ``damping`` N*s/m. The spring force is capped at ``max_force`` N: above it the handle slides in
         the fingers (the held point moves along so that the spring stays at the cap;
         :func:`simcheck.grasp_spring.spring_force`).
@@ -455,7 +456,7 @@ class World:
 
     def _robot_movable(self) -> list[int]:
         """The robot's movable joint indices (its Jacobians' columns: :func:`simcheck.bullet.movable_joints`),
-        read once: the grasp spring needs them every step."""
+        read once: the grasp spring needs them every few steps."""
         if self._movable is None:
             self._movable = movable_joints(self.client, self.robot)
         return self._movable
@@ -470,8 +471,9 @@ class World:
 
     def _apply_grasp_spring(self) -> None:
         g, c = self._grasp, self.client
-        if self._arm_impedance is not None:
+        if self._arm_impedance is not None and g.steps % self.config.grasp_stiffness_every == 0:
             g.stiffness = self._tool_stiffness(*self._arm_impedance)
+        g.steps += 1
         p_h, v_h = point_state(c, g.body, g.index, g.p_local)
         tool = self._tool_index
         p_t, v_t = point_state(c, self.robot, tool, self._tool_point)

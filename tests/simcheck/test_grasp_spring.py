@@ -70,3 +70,18 @@ def test_the_stable_damping_is_the_effective_mass_over_the_time_step_and_caps_th
     s = GraspSpring(body=1, index=0, p_local=np.zeros(3), stiffness=0.0, damping=50.0, cap=1e6, max_damping=20.0)
     f, _ = spring_force(s, np.zeros(3), np.zeros(3), np.zeros(3), np.array([1.0, 0, 0]))
     assert np.allclose(f, [20.0, 0, 0])
+
+
+def test_a_replaced_stiffness_is_capped_again_not_the_one_before():
+    s = GraspSpring(body=1, index=0, p_local=np.zeros(3), stiffness=np.diag([1000.0, 50000.0, 9000.0]), damping=0.0,
+                    cap=1e6, max_stiffness=20000.0)
+    stretch = np.array([0.001, 0.001, 0.001])
+    for _ in range(2):                                       # the capped matrix kept for the same stiffness
+        f, _ = spring_force(s, np.zeros(3), np.zeros(3), stretch, np.zeros(3))
+        assert np.allclose(f, [1.0, 20.0, 9.0])
+    s.stiffness = np.diag([30000.0, 2000.0, 9000.0])        # the adapter's next configuration
+    f, _ = spring_force(s, np.zeros(3), np.zeros(3), stretch, np.zeros(3))
+    assert np.allclose(f, [20.0, 2.0, 9.0])
+    s.stiffness = 500.0                                      # isotropic, below the cap
+    f, _ = spring_force(s, np.zeros(3), np.zeros(3), stretch, np.zeros(3))
+    assert np.allclose(f, [0.5, 0.5, 0.5])
