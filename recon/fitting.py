@@ -337,6 +337,10 @@ def _denoised(prim: Primitive, points: np.ndarray, config: FittingConfig,
         slab = _slab_box(prim, q, k, bool(f % 2), config)
         if slab is not None:
             return slab, False
+        if rim_lo != rim_hi:
+            thin = _rimmed_slab(q, k, normals, prim.T_world_part[:3, :3], prim.size, rim_hi, config)
+            if thin is not None:
+                lo[k], hi[k] = thin
         # a box seen on two or three faces: each other seen face at the median of its points
         for a in range(3):
             if a != k:
@@ -499,6 +503,34 @@ def _slab_box(prim: Primitive, q: np.ndarray, k: int, plus: bool, config: Fittin
     T = prim.T_world_part.copy()
     T[:3, :3] = T[:3, :3] @ R
     return _box_between(Primitive(PrimitiveKind.BOX, prim.size, T), lo, hi)
+
+
+def _rimmed_slab(q: np.ndarray, k: int, normals: np.ndarray | None, R: np.ndarray, size: np.ndarray,
+                 rim_high: bool, config: FittingConfig) -> tuple[float, float] | None:
+    """(low, high) along axis ``k`` of a slab (a seat, a table top: thinner than ``panel_ratio`` x its other
+    extents ``size`` (3,)) seen on one face, whose other end along ``k`` is the rim of its edges seen edge-on
+    (``rim_high``: the high end), in depth noise too wide for :func:`_slab_box` (no edge point lies deeper than
+    the face's noise reaches). ``q`` (n, 3) its points in the box's frame, whose axes are the columns of ``R``
+    (3, 3) world; ``normals`` (n, 3) world, sign-free.
+
+    The seen face is the median of the points whose normals lie along ``k`` (|cos| > 0.8): depth noise moves
+    them symmetrically about it. The edges' points (normals across ``k``, |cos| < 0.5) spread evenly over the
+    thickness and noise moves them symmetrically too, so their mean depth behind the seen face is half the
+    thickness (their mean: the centroid of an even spread). None without normals, on a box no slab, or with
+    fewer than ``min_face_points`` face or edge points."""
+    if normals is None or len(normals) != len(q):
+        return None
+    if size[k] >= config.panel_ratio * min(size[a] for a in range(3) if a != k):
+        return None
+    along = np.abs(normals @ R[:, k])
+    face, edge = along > 0.8, along < 0.5
+    if face.sum() < config.min_face_points or edge.sum() < config.min_face_points:
+        return None
+    seen = float(np.median(q[face, k]))
+    inward = 1.0 if rim_high else -1.0
+    depth = float(np.mean((q[edge, k] - seen) * inward))
+    thickness = max(2.0 * depth, config.min_thickness)
+    return (seen, seen + thickness) if rim_high else (seen - thickness, seen)
 
 
 def _turn(q: np.ndarray, n: np.ndarray, a: int) -> float:
