@@ -26,6 +26,9 @@ of (:func:`facing_plane`), after refinement. Measured along that face's outward 
 - the posts (``handle_post_width`` thick, ``handle_post_inset`` in from the bar's ends; unseen, so a
   typical value) or the knob's stem run from the mount's fitted face to the bar's inner face.
 
+Points farther behind the mount's fitted face than ``handle_face_window`` are another part's (a segmentation's
+label fragments: a knob's label on the body's back behind its door); an envelope reaching that far behind is
+first rebuilt from the points in front (:func:`_in_front`), so a handle's solid never stands inside its mount.
 A handle with fewer than ``handle_min_points`` points clear of the face, whose bar would stand less
 than ``handle_min_standoff`` off the seen face, or whose posts would be shorter than
 ``handle_min_post`` (a mount fitted in front of its points), keeps its envelope (status ``ENVELOPE``,
@@ -149,6 +152,26 @@ def _middle_across(across: np.ndarray, v: np.ndarray, config: HandleConfig) -> f
     return float(np.mean(np.percentile(across, [mid_pct, 100.0 - mid_pct])))
 
 
+def _in_front(points: np.ndarray, envelope: Primitive, face: SurfacePlane, R: np.ndarray, config: HandleConfig,
+              fitting: FittingConfig) -> tuple[np.ndarray, Primitive]:
+    """(points, envelope) of a handle without what lies behind its mount's face: a handle stands in front of
+    the face it hangs from, so its ``points`` (k, 3) world farther behind ``face`` (the mount's fitted plane,
+    normal out of it) than ``handle_face_window`` are another part's, labelled handle by a segmentation (a
+    knob's label fragments on the body's back 45 cm behind its door). An ``envelope`` reaching that far
+    behind is rebuilt as the box, along ``R``'s columns (u, v, n: in-face axes and the face's normal), of the
+    points left, from the face out to the outermost of them. Unchanged when no point or no corner of the
+    envelope lies that far behind, or when no point is left in front."""
+    h = points @ face.normal + face.d
+    keep = h >= -config.handle_face_window
+    if keep.all() or not keep.any() or float((envelope.corners() @ face.normal).min() + face.d) >= -config.handle_face_window:
+        return points, envelope
+    q = points[keep] @ R
+    lo, hi = q.min(axis=0), q.max(axis=0)
+    lo[2], hi[2] = min(lo[2], -face.d), max(hi[2], -face.d)     # from the face (n . p + d = 0) out
+    size = np.maximum(hi - lo, fitting.min_thickness)
+    return points[keep], _posed(PrimitiveKind.BOX, size, R, R @ ((lo + hi) / 2.0))
+
+
 def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
                   config: HandleConfig, fitting: FittingConfig, mount_points: np.ndarray | None = None) -> HandleShapes:
     """A handle's bar and posts (or knob's cap and stem) measured from its ``points`` (k, 3) world.
@@ -158,12 +181,14 @@ def handle_shapes(points: np.ndarray, envelope: Primitive, face: SurfacePlane,
     mount_points : (m, 3) world, the mount's points, optional. Where they show the face around the handle
         (their median height) is the face the handle is measured from: a refined mount may sit a
         centimetre or two off its points, while the bar belongs where its points are.
-    Returns BAR / KNOB shapes with their enclosing box as the new envelope, or ENVELOPE (the input)
-    with the reason when the points cannot support a bar (see the module docstring).
+    Returns BAR / KNOB shapes with their enclosing box as the new envelope, or ENVELOPE (the input, or the box
+    of its points in front of the face when it reached behind it: :func:`_in_front`) with the reason when the
+    points cannot support a bar (see the module docstring).
     """
     points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
     n = np.asarray(face.normal, float) / np.linalg.norm(face.normal)
     u, v = _face_axes(envelope, n)                     # (u, v, n) right-handed
+    points, envelope = _in_front(points, envelope, face, np.column_stack([u, v, n]), config, fitting)
     reach = 0.5 * float(np.max(np.abs(envelope.T_world_part[:3, :3].T @ np.column_stack([u, v])).T @ envelope.size))
     seen, sigma, n_seen = _seen_face(mount_points, n, face.d, envelope.center, reach + config.handle_face_window,
                                      config)
@@ -270,7 +295,11 @@ def mounted_handle_shapes(prims: dict[int, Primitive], labels: dict[int, str], p
             continue
         hs = handle_shapes(points[i], prim, face, config, fitting, points.get(j))
         if hs.style is HandleStyle.ENVELOPE:
-            log.info("%s part %d (%s): kept as one %s: %s", where, i, labels[i], prim.kind.value, hs.reason)
+            if hs.envelope is not prim:
+                out[i] = hs.envelope
+                log.info("%s part %d (%s): its %s reached behind its mount's face; kept as the box of its points "
+                         "in front of it (%s m)", where, i, labels[i], prim.kind.value, np.round(hs.envelope.size, 3))
+            log.info("%s part %d (%s): kept as one %s: %s", where, i, labels[i], out[i].kind.value, hs.reason)
             continue
         log.debug("%s part %d (%s) on part %d: %s", where, i, labels[i], j, hs.reason)
         out[i], shapes[i] = hs.envelope, hs

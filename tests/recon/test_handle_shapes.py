@@ -266,3 +266,35 @@ def test_a_knob_whose_points_trail_off_one_side_is_centred_on_its_cap():
     hs = handle_shapes(cloud, _box_envelope(0.0, out, 0.03, r_cap), FACE, CFG.handles, CFG.fitting)
     assert hs.style is HandleStyle.KNOB, hs.reason
     assert np.linalg.norm(hs.shapes[0].center[1:]) < 0.005, hs.shapes[0].center
+
+
+def test_a_knob_with_label_fragments_behind_its_door_is_not_a_box_through_the_door():
+    """ScanNet-style nightstand (third-party corpus, seed 1): 10 points of a knob 2-4 cm in front of its door
+    and 6 points of the body's back 45 cm behind it, all labelled handle; too few for a knob's cap, so the
+    handle keeps its envelope -- which Eq. 3 fitted round all 16 points: a 48 cm deep box through the door.
+    A handle stands in front of its mount: the envelope is the box of its points in front of the face."""
+    rng = np.random.default_rng(9)
+    knob = np.c_[rng.uniform(0.02, 0.04, 10), rng.uniform(-0.02, 0.02, 10), rng.uniform(-0.02, 0.02, 10)]
+    back = np.c_[rng.uniform(-0.46, -0.44, 6), rng.uniform(0.02, 0.05, 6), rng.uniform(0.14, 0.2, 6)]
+    env = _box_envelope(-0.46, 0.04, 0.05, 0.11)
+    hs = handle_shapes(np.r_[knob, back], env, FACE, CFG.handles, CFG.fitting)
+    assert hs.style is HandleStyle.ENVELOPE and hs.shapes == ()
+    c = hs.envelope.corners()
+    assert c[:, 0].min() == pytest.approx(0.0, abs=1e-9) and c[:, 0].max() == pytest.approx(knob[:, 0].max())
+    assert np.all(c[:, 1:].min(axis=0) >= knob[:, 1:].min(axis=0) - 1e-9)
+    assert np.all(c[:, 1:].max(axis=0) <= knob[:, 1:].max(axis=0) + 1e-9)
+    # and through the caller: the part's primitive is the repaired box
+    door = Primitive(PrimitiveKind.BOX, [0.02, 0.6, 0.4], _shift([-0.01, 0, 0]))
+    out, shapes = mounted_handle_shapes({1: door, 2: env}, {1: "door", 2: "handle"}, {2: np.r_[knob, back]},
+                                        CFG.handles, CFG.contacts, CFG.fitting, CFG.completion, "cabinet1", {2: 1})
+    assert shapes == {} and out[2].isclose(hs.envelope, atol=1e-12) and out[1] is door
+
+
+def test_a_handle_whose_points_all_stand_in_front_keeps_its_envelope():
+    """Points within the face window behind the face (depth noise, the front's bleed) are the handle's:
+    nothing is cut, the envelope is the input."""
+    rng = np.random.default_rng(10)
+    pts = np.c_[rng.uniform(-0.03, 0.04, 12), rng.uniform(-0.02, 0.02, 12), rng.uniform(-0.02, 0.02, 12)]
+    env = _box_envelope(-0.03, 0.04, 0.02, 0.02)
+    hs = handle_shapes(pts, env, FACE, CFG.handles, CFG.fitting)
+    assert hs.style is HandleStyle.ENVELOPE and hs.envelope is env
