@@ -254,6 +254,10 @@ def complete_missing_legs(category: str, prims: dict[int, Primitive], labels: di
 _REACHES = {("frame", "headboard")}
 """(label, label it reaches): a bed frame starts at its headboard."""
 
+_HANGS_DOWN = {"headboard": ("frame", "mattress")}
+"""{label: (label, hiding label)}: a headboard reaches down at least to its frame's underside; the part of it the
+mattress in front hides (a mattress whose underside lies below the headboard's fitted lower edge) is completed."""
+
 _SPANS = {("frame", "mattress")}
 """(label, label it spans): a bed frame is at least as long and wide as the mattress it carries."""
 
@@ -281,7 +285,9 @@ def complete_reaching_parts(prims: dict[int, Primitive], labels: dict[int, str],
     point out of that end), then along a horizontal axis to the part it reaches by template (its headboard)
     when that part's near face lies beyond the box's end by more than ``theta_d`` and at most
     ``completion_reach`` (m), facing it. ``normals`` : {part_id: its points' unit normals (n, 3), world,
-    oriented out of the part}; a part without them shows no end. Returns (new prims, {part_id: metres added})."""
+    oriented out of the part}; a part without them shows no end. Last, a headboard whose fitted lower edge lies
+    above its mattress's underside (the mattress in front hides its lower part) is extended down to its frame's
+    underside (``_HANGS_DOWN``). Returns (new prims, {part_id: metres added})."""
     out, changes = dict(prims), {}
     for i, prim in prims.items():
         if prim.kind is not PrimitiveKind.BOX:
@@ -311,4 +317,15 @@ def complete_reaching_parts(prims: dict[int, Primitive], labels: dict[int, str],
             if contacts.theta_d < gap <= config.completion_reach:
                 out[i] = _extended(out[i], k, axis, gap)
                 changes[i] = changes.get(i, 0.0) + gap
+    for i, (base, hider) in ((i, _HANGS_DOWN[labels[i]]) for i in prims if labels[i] in _HANGS_DOWN):
+        k = _vertical_axis(out[i])
+        bottom = float(out[i].corners()[:, 2].min())
+        hidden = any(labels[j] == hider and float(out[j].corners()[:, 2].min()) < bottom for j in out)
+        floors = [float(out[j].corners()[:, 2].min()) for j in out if labels[j] == base]
+        if k is None or not hidden or not floors:
+            continue
+        gap = bottom - min(floors)
+        if gap > contacts.theta_d:
+            out[i] = _extended(out[i], k, np.array([0.0, 0.0, -1.0]), gap)
+            changes[i] = changes.get(i, 0.0) + gap
     return out, changes

@@ -160,6 +160,26 @@ def test_a_bed_frame_spans_its_mattress_but_stops_at_its_headboards_face():
     assert out[1].corners()[:, 0].max() == pytest.approx(1.95)
     assert out[1].corners()[:, 0].min() == pytest.approx(-0.05)
 
+def test_a_headboard_seen_only_above_its_mattress_reaches_down_to_its_frame():
+    # realistic random/1 bed2: the headboard's points stop at the mattress's top (its lower part behind the
+    # mattress and frame), so it touched neither frame nor mattress and hung from the mattress (AP 0.857)
+    from recon.completion import complete_reaching_parts
+
+    frame = Primitive("box", [2.0, 1.4, 0.15], at(1.0, 0.0, 0.2))           # x 0 .. 2, z 0.125 .. 0.275
+    mattress = Primitive("box", [1.95, 1.4, 0.2], at(1.0, 0.0, 0.375))     # z 0.275 .. 0.475
+    seen = Primitive("box", [0.05, 1.4, 0.45], at(2.025, 0.0, 0.725))      # face at x = 2, z 0.5 .. 0.95
+    labels = {1: "frame", 2: "mattress", 3: "headboard"}
+    out, changes = complete_reaching_parts({1: frame, 2: mattress, 3: seen}, labels, CFG.completion, CFG.contacts)
+    c = out[3].corners()
+    assert c[:, 2].min() == pytest.approx(0.125) and c[:, 2].max() == pytest.approx(0.95)
+    assert c[:, 0].min() == pytest.approx(2.0) and changes[3] == pytest.approx(0.375)
+    assert contact_edge(1, out[1].planes(), 3, out[3].planes(), CFG.contacts) is not None
+    # seen below the mattress's underside: nothing hides its lower edge, it is where its points end
+    low = Primitive("box", [0.05, 1.4, 0.75], at(2.025, 0.0, 0.575))       # z 0.2 .. 0.95
+    out, changes = complete_reaching_parts({1: frame, 2: mattress, 3: low}, labels, CFG.completion, CFG.contacts)
+    assert out[3] is low and 3 not in changes
+
+
 def test_a_leg_whose_top_sank_into_its_frame_meets_the_frame_not_the_mattress_above():
     # a bed frame fitted low (underside 0.10) swallows the top 8 cm of a leg (0 .. 0.18); the mattress
     # above (underside 0.29) is within reach but the leg holds the frame, not the mattress
