@@ -163,7 +163,8 @@ def _in_front(points: np.ndarray, envelope: Primitive, face: SurfacePlane, R: np
     envelope lies that far behind, or when no point is left in front."""
     h = points @ face.normal + face.d
     keep = h >= -config.handle_face_window
-    if keep.all() or not keep.any() or float((envelope.corners() @ face.normal).min() + face.d) >= -config.handle_face_window:
+    reaches_behind = float((envelope.corners() @ face.normal).min() + face.d) < -config.handle_face_window
+    if keep.all() or not keep.any() or not reaches_behind:
         return points, envelope
     q = points[keep] @ R
     lo, hi = q.min(axis=0), q.max(axis=0)

@@ -144,7 +144,8 @@ def contact_scores(obj: ObjectReconstruction, config: TreeConfig, weighted: bool
     ``near_parent_distance``, the weight :func:`part_tree` gave it; distance from the child's corners
     and centre to the parent's surface, final primitives), at least ``UNCONTACTED_TREE_EDGE_SCORE``,
     which any other such edge scores; a tree edge to an expected parent with a weaker Eq. 1 contact scores that
-    near-parent weight too (as in Eq. 4, a weak contact never counts less than none). A pair of designed neighbours (:func:`recon.templates.designed_neighbours`:
+    near-parent weight too (as in Eq. 4, a weak contact never counts less than none). A pair of designed
+    neighbours (:func:`recon.templates.designed_neighbours`:
     a bed's mattress and headboard, both children of its frame, so never a tree edge) that Eq. 1 missed
     scores the same near-parent weight at their distance (the nearer of either's corners and centre to the
     other's surface): depth noise, label bleed at their boundary and 3.5 cm voxels leave a ScanNet-style

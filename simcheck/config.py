@@ -65,13 +65,12 @@ class PhysicsConfig:
             a sustained load, not under a one-step solver impulse.
         grasp_stiffness: stiffness, N/m, of the isotropic spring that holds the grasped point to the tool
             for a robot whose spec gives no joint stiffness (``SimRobot.joint_stiffness``; with one, the
-            spring is the tool's Cartesian stiffness under that joint impedance at every step).
+            spring is the tool's Cartesian stiffness under that joint impedance, see ``grasp_stiffness_every``).
         grasp_damping: damping, N*s/m, of that spring.
         grasp_stiffness_every: with a robot's joint stiffness, the tool's Cartesian stiffness is computed again
-            (and its stable cap applied) every this many physics steps of the grasp, from the first (5 = 32 Hz:
-            the arm's configuration moves ~0.015 rad at most in between; every step cost ~6 % of a
-            certification's CPU and moved no criterion by more than 1 %: docs/decisions.md, "The grasp
-            spring's stiffness at 32 Hz").
+            (and its stable cap applied) every this many physics steps of the grasp, from the first (5 at 160 Hz
+            = 32 Hz: the arm's configuration moves ~0.015 rad at most in between; measured against every step in
+            docs/decisions.md, "The grasp spring's stiffness at 32 Hz").
         grasp_max_turn: the grasp is lost when the handle has turned more than this in the fingers, rad
             (the grasp transmits no torque; 20 deg turns a bar out of flat pads). A round bar held across
             its axis rolls between the pads: its roll about its own axis is not counted, only the turn of
